@@ -1,0 +1,180 @@
+#pragma once
+// k-DOP bounding volumes (discrete oriented polytopes) for K = 6, 14, 18, 26, with the axis tables of the
+// seed paper (docs/paper-summary.md). A K-DOP stores, for each of its K/2 fixed axes d_i, the interval
+// [min_i, max_i] of d_i · x over the bounded points. The axes are NOT normalised: d_i · x is exact up to one
+// or two roundings for the integer axes below, and thickness is inflated by |d_i|.
+//
+//   K = 6  : (1,0,0) (0,1,0) (0,0,1)                                         — the AABB
+//   K = 14 : the 3 above + (1,1,1) (1,-1,1) (1,1,-1) (1,-1,-1)                — + 4 corner diagonals
+//   K = 18 : the 3 above + (1,1,0) (1,0,1) (0,1,1) (1,-1,0) (1,0,-1) (0,1,-1) — + 6 edge diagonals
+//   K = 26 : the 3 + the 4 corner diagonals + the 6 edge diagonals (13 axes)
+//
+// Storage is float (half the bytes of double: more nodes per cache line in traversal). Every bound is
+// rounded OUTWARD from a double computation that is itself padded by its worst-case rounding error, so a
+// float k-DOP always contains the exact k-DOP of its points: culling stays conservative.
+#include <array>
+#include <cmath>
+#include <concepts>
+#include <cstdint>
+#include <limits>
+
+#include "framework/geometry/vec.hpp"
+
+namespace ccdlab {
+
+/// Axis table of a K-DOP: K/2 integer direction vectors (entries in {-1, 0, 1}).
+template <int K>
+struct KDopAxes;
+
+template <>
+struct KDopAxes<6> {
+  static constexpr std::array<std::array<int, 3>, 3> axes{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+};
+template <>
+struct KDopAxes<14> {
+  static constexpr std::array<std::array<int, 3>, 7> axes{
+      {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}, {1, -1, 1}, {1, 1, -1}, {1, -1, -1}}};
+};
+template <>
+struct KDopAxes<18> {
+  static constexpr std::array<std::array<int, 3>, 9> axes{{{1, 0, 0},
+                                                           {0, 1, 0},
+                                                           {0, 0, 1},
+                                                           {1, 1, 0},
+                                                           {1, 0, 1},
+                                                           {0, 1, 1},
+                                                           {1, -1, 0},
+                                                           {1, 0, -1},
+                                                           {0, 1, -1}}};
+};
+template <>
+struct KDopAxes<26> {
+  static constexpr std::array<std::array<int, 3>, 13> axes{{{1, 0, 0},
+                                                            {0, 1, 0},
+                                                            {0, 0, 1},
+                                                            {1, 1, 1},
+                                                            {1, -1, 1},
+                                                            {1, 1, -1},
+                                                            {1, -1, -1},
+                                                            {1, 1, 0},
+                                                            {1, 0, 1},
+                                                            {0, 1, 1},
+                                                            {1, -1, 0},
+                                                            {1, 0, -1},
+                                                            {0, 1, -1}}};
+};
+
+namespace detail {
+/// Largest float <= x (x finite).
+inline float round_down(double x) {
+  auto f = static_cast<float>(x);
+  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+/// Smallest float >= x (x finite).
+inline float round_up(double x) {
+  auto f = static_cast<float>(x);
+  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+}  // namespace detail
+
+template <int K>
+class KDop {
+  static_assert(K == 6 || K == 14 || K == 18 || K == 26, "k-DOPs exist for K = 6, 14, 18, 26");
+
+ public:
+  static constexpr int k = K;
+  static constexpr int num_axes = K / 2;
+  static constexpr const auto& axes = KDopAxes<K>::axes;
+
+  /// An empty k-DOP (overlaps nothing; merging with it is the identity).
+  KDop() {
+    min_.fill(std::numeric_limits<float>::infinity());
+    max_.fill(-std::numeric_limits<float>::infinity());
+  }
+
+  /// Grows the k-DOP to contain point p (conservatively, see header).
+  void grow(const Vec3& p) {
+    for (int i = 0; i < num_axes; ++i) {
+      const auto& d = axes[i];
+      double s = d[0] * p.x() + d[1] * p.y() + d[2] * p.z();
+      // Two additions at most: error <= 2u (|x| + |y| + |z|), u = 2^-53; pad by 4u to be safe.
+      double err = 4.440892098500626e-16 * (std::abs(p.x()) + std::abs(p.y()) + std::abs(p.z()));
+      min_[i] = std::min(min_[i], detail::round_down(s - err));
+      max_[i] = std::max(max_[i], detail::round_up(s + err));
+    }
+  }
+  void merge(const KDop& o) {
+    for (int i = 0; i < num_axes; ++i) {
+      min_[i] = std::min(min_[i], o.min_[i]);
+      max_[i] = std::max(max_[i], o.max_[i]);
+    }
+  }
+  /// Inflates every slab by thickness r (a ball of radius r projects to r·|d_i| on axis d_i).
+  void inflate(double r) {
+    if (r <= 0) return;
+    for (int i = 0; i < num_axes; ++i) {
+      const auto& d = axes[i];
+      double len = std::sqrt(double(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+      min_[i] = detail::round_down(double(min_[i]) - r * len * (1 + 1e-15));
+      max_[i] = detail::round_up(double(max_[i]) + r * len * (1 + 1e-15));
+    }
+  }
+  /// Closed-interval overlap on every axis (touching counts as overlap).
+  [[nodiscard]] bool overlaps(const KDop& o) const {
+    bool sep = false;
+    for (int i = 0; i < num_axes; ++i) sep |= (min_[i] > o.max_[i]) | (o.min_[i] > max_[i]);
+    return !sep;
+  }
+  [[nodiscard]] bool contains(const Vec3& p) const {
+    KDop q;
+    q.grow(p);
+    for (int i = 0; i < num_axes; ++i)
+      if (q.min_[i] < min_[i] || q.max_[i] > max_[i]) {
+        // q is padded outward; accept if the exact projection is inside.
+        const auto& d = axes[i];
+        double s = d[0] * p.x() + d[1] * p.y() + d[2] * p.z();
+        if (s < min_[i] || s > max_[i]) return false;
+      }
+    return true;
+  }
+  [[nodiscard]] bool empty() const { return min_[0] > max_[0]; }
+  /// Sum of the extents along x, y, z: a cheap size measure used to pick which node to descend.
+  [[nodiscard]] float size_measure() const { return (max_[0] - min_[0]) + (max_[1] - min_[1]) + (max_[2] - min_[2]); }
+  [[nodiscard]] float min(int i) const { return min_[i]; }
+  [[nodiscard]] float max(int i) const { return max_[i]; }
+
+ private:
+  std::array<float, num_axes> min_;
+  std::array<float, num_axes> max_;
+};
+
+/// The swept k-DOP of a triangle over one step: its 3 vertices at t0 and at t1. Under linear motion every
+/// point of the moving triangle stays in the convex hull of these 6 points, hence inside the k-DOP.
+template <class BV>
+BV swept_triangle_bv(const Vec3& a0, const Vec3& b0, const Vec3& c0, const Vec3& a1, const Vec3& b1,
+                     const Vec3& c1, double thickness) {
+  BV bv;
+  bv.grow(a0);
+  bv.grow(b0);
+  bv.grow(c0);
+  bv.grow(a1);
+  bv.grow(b1);
+  bv.grow(c1);
+  bv.inflate(thickness);
+  return bv;
+}
+
+/// What a bounding volume must offer the hierarchy and the traversal.
+template <class BV>
+concept BoundingVolume = std::default_initializable<BV> && requires(BV bv, const BV cbv, Vec3 p) {
+  bv.grow(p);
+  bv.merge(cbv);
+  bv.inflate(1.0);
+  { cbv.overlaps(cbv) } -> std::convertible_to<bool>;
+  { cbv.size_measure() } -> std::convertible_to<float>;
+};
+
+static_assert(BoundingVolume<KDop<6>> && BoundingVolume<KDop<26>>);
+static_assert(sizeof(KDop<18>) == 18 * sizeof(float));
+
+}  // namespace ccdlab

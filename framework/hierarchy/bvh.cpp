@@ -1,0 +1,43 @@
+#include "framework/hierarchy/bvh.hpp"
+
+#include "framework/util/error.hpp"
+
+namespace ccdlab {
+
+void compute_leaf_counts(BvhTopology& bvh) {
+  bvh.leaf_count.assign(bvh.nodes.size(), 1);
+  for (Index i = bvh.size() - 1; i >= 0; --i) {
+    const BvhNode& n = bvh.nodes[i];
+    if (!n.is_leaf()) bvh.leaf_count[i] = bvh.leaf_count[n.left] + bvh.leaf_count[n.right];
+  }
+}
+
+void validate_bvh(const BvhTopology& bvh, std::span<const Index> faces) {
+  if (faces.empty()) {
+    if (!bvh.nodes.empty()) fail("bvh: non-empty tree over no faces");
+    return;
+  }
+  if (bvh.size() != 2 * Index(faces.size()) - 1)
+    fail("bvh: {} nodes for {} faces, expected {}", bvh.size(), faces.size(), 2 * faces.size() - 1);
+  std::vector<int> seen_face;
+  Index max_face = 0;
+  for (Index f : faces) max_face = std::max(max_face, f);
+  seen_face.assign(max_face + 1, 0);
+  if (bvh.nodes[0].parent != -1) fail("bvh: root has a parent");
+  for (Index i = 0; i < bvh.size(); ++i) {
+    const BvhNode& n = bvh.nodes[i];
+    if (n.is_leaf()) {
+      if (n.right != -1 || n.face < 0 || n.face > max_face) fail("bvh: leaf {} malformed", i);
+      ++seen_face[n.face];
+    } else {
+      if (n.left <= i || n.right <= i || n.left >= bvh.size() || n.right >= bvh.size())
+        fail("bvh: node {} children {} {} not after it (pre-order)", i, n.left, n.right);
+      if (bvh.nodes[n.left].parent != i || bvh.nodes[n.right].parent != i)
+        fail("bvh: node {} children do not point back", i);
+    }
+  }
+  for (Index f : faces)
+    if (seen_face[f] != 1) fail("bvh: face {} appears in {} leaves", f, seen_face[f]);
+}
+
+}  // namespace ccdlab

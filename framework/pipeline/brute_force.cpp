@@ -1,0 +1,43 @@
+#include "framework/pipeline/brute_force.hpp"
+
+#include "framework/primitive/feature_pairs.hpp"
+#include "framework/primitive/narrow_phase.hpp"
+
+namespace ccdlab {
+
+std::vector<FacePair> brute_force_candidates(const TriMesh& mesh, const CollisionRules& rules, const AnyBvs& face_bvs) {
+  std::vector<FacePair> out;
+  std::visit(
+      [&](const auto& bvs) {
+        for (Index a = 0; a < mesh.num_faces(); ++a)
+          for (Index b = a + 1; b < mesh.num_faces(); ++b)
+            if (rules.faces_may_collide(mesh, a, b) && bvs[a].overlaps(bvs[b])) out.push_back({a, b});
+      },
+      face_bvs);
+  return out;
+}
+
+std::vector<Contact> brute_force_contacts(const TriMesh& mesh, const CollisionRules& rules, const Positions& x_t0,
+                                          const Positions& x_t1, const PrimitiveTester& tester) {
+  Ownership unused;
+  NarrowPhase narrow(mesh, unused, tester);
+  narrow.begin_step(x_t0, x_t1);
+  std::vector<Contact> contacts;
+  StepCounters counters;
+  for (Index v = 0; v < mesh.num_vertices(); ++v) {
+    int bv = rules.body_of_vertex(v);
+    if (bv < 0) continue;
+    for (Index f = 0; f < mesh.num_faces(); ++f)
+      if (!contains_vertex(mesh.face(f), v) && rules.bodies_interact(bv, rules.body_of_face(f)))
+        narrow.test_vf(v, f, contacts, counters, /*box_cull=*/false);
+  }
+  for (Index a = 0; a < mesh.num_edges(); ++a)
+    for (Index b = a + 1; b < mesh.num_edges(); ++b)
+      if (!shares_vertex(mesh.edge(a), mesh.edge(b)) &&
+          rules.bodies_interact(rules.body_of_vertex(mesh.edge(a)[0]), rules.body_of_vertex(mesh.edge(b)[0])))
+        narrow.test_ee(a, b, contacts, counters, /*box_cull=*/false);
+  sort_contacts(contacts);
+  return contacts;
+}
+
+}  // namespace ccdlab

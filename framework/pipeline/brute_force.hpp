@@ -1,0 +1,21 @@
+#pragma once
+// Brute-force references for small meshes (O(n²)): the broad phase checks its candidates against every face
+// pair, the whole pipeline its contacts against every feature pair (no BVH, no ownership, no culling).
+#include <vector>
+
+#include "framework/pipeline/bodies.hpp"
+#include "framework/primitive/tester.hpp"
+#include "framework/traversal/candidates.hpp"
+#include "framework/traversal/scheduler.hpp"
+
+namespace ccdlab {
+
+/// All face pairs (a < b) that may collide under `rules` and whose face BVs overlap, sorted.
+std::vector<FacePair> brute_force_candidates(const TriMesh& mesh, const CollisionRules& rules, const AnyBvs& face_bvs);
+
+/// All colliding feature pairs: every VF (v ∉ f) and EE (no shared vertex) pair of interacting bodies,
+/// each tested with `tester`. Sorted like CcdPipeline's contacts.
+std::vector<Contact> brute_force_contacts(const TriMesh& mesh, const CollisionRules& rules, const Positions& x_t0,
+                                          const Positions& x_t1, const PrimitiveTester& tester);
+
+}  // namespace ccdlab

@@ -1,0 +1,79 @@
+#pragma once
+// CcdPipeline: one CCD step, frame i → i+1, wired from the strategies chosen in the config (design.md):
+//   swept face BVs → BVH refit (built once, on the first step) → BVTT traversal (scheduler) → candidate face
+//   pairs → feature pairs (ownership rule) + orphan set → elementary tests (tester) → sorted contacts.
+// Only the passes the bodies ask for run: no self pass without self-collision, no pair pass without a
+// second body.
+#include <memory>
+#include <vector>
+
+#include "framework/hierarchy/bvh.hpp"
+#include "framework/pipeline/bodies.hpp"
+#include "framework/pipeline/step_result.hpp"
+#include "framework/primitive/feature_pairs.hpp"
+#include "framework/primitive/narrow_phase.hpp"
+#include "framework/primitive/tester.hpp"
+#include "framework/traversal/scheduler.hpp"
+
+namespace ccdlab {
+
+struct PipelineStrategies {
+  int k = 18;  ///< k-DOP: 6, 14, 18 or 26
+  std::unique_ptr<HierarchyBuilder> builder;
+  std::unique_ptr<TraversalScheduler> scheduler;
+  std::unique_ptr<PrimitiveTester> tester;
+};
+
+class CcdPipeline {
+ public:
+  /// `mesh` must outlive the pipeline. Builds the ownership and the orphan set (once per topology).
+  CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, PipelineStrategies strategies);
+  ~CcdPipeline();
+
+  /// Runs one step between two frames of the mesh (same vertex count as the topology).
+  StepResult step(const Positions& x_t0, const Positions& x_t1);
+
+  /// Tests of the ownership rule: record every feature pair considered into StepResult::tested_*.
+  void set_record_tested_pairs(bool on) { record_tested_ = on; }
+
+  [[nodiscard]] const TriMesh& mesh() const { return mesh_; }
+  [[nodiscard]] const CollisionRules& rules() const { return rules_; }
+  [[nodiscard]] const Ownership& owners() const { return owners_; }
+  [[nodiscard]] const OrphanSet& orphans() const { return orphans_; }
+  [[nodiscard]] const PipelineStrategies& strategies() const { return strategies_; }
+  /// The swept BV of every face in the last step (index = face id).
+  [[nodiscard]] const AnyBvs& face_bvs() const { return face_bvs_; }
+  /// BVH of body b (empty before the first step).
+  [[nodiscard]] const BvhTopology& bvh(int body) const { return bodies_[body].bvh; }
+  /// Bytes of the pipeline's persistent data (topology, ownership, orphans, BVHs).
+  [[nodiscard]] std::size_t memory_bytes() const;
+
+ private:
+  struct BodyState {
+    std::vector<Index> faces;
+    BvhTopology bvh;
+    AnyBvs node_bvs;
+  };
+  void build_hierarchies(const Positions& x_t0, const Positions& x_t1);
+
+  const TriMesh& mesh_;
+  CollisionRules rules_;
+  PipelineStrategies strategies_;
+  Ownership owners_;
+  OrphanSet orphans_;
+  NarrowPhase narrow_;
+  std::vector<BodyState> bodies_;
+  std::vector<TraversalPass> passes_;
+  AnyBvs face_bvs_;
+  TraversalOutput candidates_;
+  bool built_ = false;
+  bool record_tested_ = false;
+};
+
+/// An AnyBvs holding an empty vector of KDop<k>; throws Error unless k ∈ {6, 14, 18, 26}.
+AnyBvs make_bvs(int k);
+
+/// Swept k-DOP of every face of the mesh over the step (inflated by thickness).
+void compute_face_bvs(const TriMesh& mesh, const Positions& x_t0, const Positions& x_t1, double thickness, AnyBvs& out);
+
+}  // namespace ccdlab

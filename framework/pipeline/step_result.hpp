@@ -1,0 +1,43 @@
+#pragma once
+// What one CCD step reports: the contacts, the work done (counters) and where the time went (phases).
+#include <cstdint>
+#include <vector>
+
+#include "framework/primitive/contact.hpp"
+#include "framework/primitive/feature_pairs.hpp"
+
+namespace ccdlab {
+
+struct StepCounters {
+  std::uint64_t bv_tests = 0;         ///< BVH node pair overlap tests in traversal
+  std::uint64_t candidate_pairs = 0;  ///< non-adjacent face pairs whose swept BVs overlap
+  std::uint64_t vf_pairs = 0;         ///< vertex–face feature pairs considered (candidates' owned + orphans)
+  std::uint64_t ee_pairs = 0;         ///< edge–edge feature pairs considered
+  std::uint64_t orphan_vf = 0;        ///< of which from the orphan set
+  std::uint64_t orphan_ee = 0;
+  std::uint64_t vf_tests = 0;         ///< elementary VF tests run (feature boxes overlapped)
+  std::uint64_t ee_tests = 0;         ///< elementary EE tests run
+  std::uint64_t contacts_vf = 0;
+  std::uint64_t contacts_ee = 0;
+};
+
+/// Wall-clock milliseconds per phase of one step (data flow of design.md).
+struct StepTimings {
+  double swept_bv_ms = 0;   ///< swept k-DOP of every face (and the BVH build, on the first step)
+  double refit_ms = 0;      ///< bottom-up refit
+  double traverse_ms = 0;   ///< BVTT traversal → candidate face pairs
+  double narrow_ms = 0;     ///< feature pairs of candidates → elementary tests
+  double orphan_ms = 0;     ///< orphan set → elementary tests
+  double total_ms = 0;
+};
+
+struct StepResult {
+  std::vector<Contact> contacts;  ///< sorted by feature identity
+  StepCounters counters;
+  StepTimings timings;
+  /// Filled only when the pipeline records tested pairs (tests of the ownership rule).
+  std::vector<VertexFacePair> tested_vf;
+  std::vector<EdgeEdgePair> tested_ee;
+};
+
+}  // namespace ccdlab

@@ -1,0 +1,61 @@
+#pragma once
+// Contact records and the query types of the elementary CCD tests. Vocabulary (design.md): `_t0`/`_t1` for
+// the two ends of a step; `v, f0 f1 f2` for vertex–face; `ea0 ea1, eb0 eb1` for edge–edge.
+#include <array>
+#include <compare>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "framework/geometry/vec.hpp"
+#include "framework/mesh/tri_mesh.hpp"
+
+namespace ccdlab {
+
+/// Vertex v moving against the triangle (f0, f1, f2), linear motion over t ∈ [0, 1].
+struct VertexFaceQuery {
+  Vec3 v_t0, f0_t0, f1_t0, f2_t0;
+  Vec3 v_t1, f0_t1, f1_t1, f2_t1;
+};
+
+/// Edge (ea0, ea1) moving against edge (eb0, eb1), linear motion over t ∈ [0, 1].
+struct EdgeEdgeQuery {
+  Vec3 ea0_t0, ea1_t0, eb0_t0, eb1_t0;
+  Vec3 ea0_t1, ea1_t1, eb0_t1, eb1_t1;
+};
+
+/// Result of one elementary test. "No contact" is hit == false (toi and coords then meaningless).
+struct CcdHit {
+  bool hit = false;
+  double toi = 1.0;                 ///< earliest time of contact in [0, 1]
+  std::array<double, 2> coords{};   ///< VF: barycentric weights of f1, f2; EE: parameters on edge a, edge b
+};
+
+enum class ContactKind : std::uint8_t { vf = 0, ee = 1 };
+
+/// One colliding feature pair.
+///  VF: feature_a = vertex id, feature_b = face id, vertices = (v, f0, f1, f2)
+///  EE: feature_a < feature_b = edge ids,           vertices = (ea0, ea1, eb0, eb1) of edges a, b
+struct Contact {
+  ContactKind kind;
+  Index feature_a;
+  Index feature_b;
+  std::array<Index, 4> vertices;
+  double toi;
+  std::array<double, 2> coords;
+
+  /// Identity of the feature pair (not its time): what must be equal across schedulers.
+  [[nodiscard]] auto key() const { return std::tuple(kind, feature_a, feature_b); }
+};
+
+/// Sorts contacts by feature identity.
+void sort_contacts(std::vector<Contact>& contacts);
+
+/// 64-bit FNV-1a hash of the sorted (kind, feature_a, feature_b) of all contacts: equal contact sets give
+/// equal hashes whatever the scheduler or thread count. `seed` chains hashes across steps.
+std::uint64_t contact_set_hash(std::span<const Contact> sorted_contacts, std::uint64_t seed = 14695981039346656037ull);
+
+std::string_view to_string(ContactKind kind);
+
+}  // namespace ccdlab

@@ -1,0 +1,83 @@
+#include "framework/primitive/narrow_phase.hpp"
+
+namespace ccdlab {
+
+void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1) {
+  x_t0_ = &x_t0;
+  x_t1_ = &x_t1;
+  vertex_box_.resize(x_t0.size());
+  for (std::size_t v = 0; v < x_t0.size(); ++v) {
+    vertex_box_[v].lo = x_t0[v].cwiseMin(x_t1[v]);
+    vertex_box_[v].hi = x_t0[v].cwiseMax(x_t1[v]);
+  }
+}
+
+bool NarrowPhase::boxes_overlap(std::initializer_list<Index> va, std::initializer_list<Index> vb) const {
+  Box3 a, b;
+  for (Index v : va) a.grow(vertex_box_[v]);
+  for (Index v : vb) b.grow(vertex_box_[v]);
+  a.inflate(tester_.thickness());
+  return a.overlaps(b);
+}
+
+VertexFaceQuery NarrowPhase::vf_query(Index v, Index f) const {
+  const Face& t = mesh_.face(f);
+  const Positions &x0 = *x_t0_, &x1 = *x_t1_;
+  return {x0[v], x0[t[0]], x0[t[1]], x0[t[2]], x1[v], x1[t[0]], x1[t[1]], x1[t[2]]};
+}
+
+EdgeEdgeQuery NarrowPhase::ee_query(Index a, Index b) const {
+  const Edge &ea = mesh_.edge(a), &eb = mesh_.edge(b);
+  const Positions &x0 = *x_t0_, &x1 = *x_t1_;
+  return {x0[ea[0]], x0[ea[1]], x0[eb[0]], x0[eb[1]], x1[ea[0]], x1[ea[1]], x1[eb[0]], x1[eb[1]]};
+}
+
+void NarrowPhase::test_vf(Index v, Index f, std::vector<Contact>& out, StepCounters& c, bool box_cull) const {
+  const Face& t = mesh_.face(f);
+  ++c.vf_pairs;
+  if (box_cull && !boxes_overlap({v}, {t[0], t[1], t[2]})) return;
+  ++c.vf_tests;
+  CcdHit hit = tester_.vertex_face(vf_query(v, f));
+  if (!hit.hit) return;
+  ++c.contacts_vf;
+  out.push_back(Contact{ContactKind::vf, v, f, {v, t[0], t[1], t[2]}, hit.toi, hit.coords});
+}
+
+void NarrowPhase::test_ee(Index a, Index b, std::vector<Contact>& out, StepCounters& c, bool box_cull) const {
+  if (a > b) std::swap(a, b);
+  const Edge &ea = mesh_.edge(a), &eb = mesh_.edge(b);
+  ++c.ee_pairs;
+  if (box_cull && !boxes_overlap({ea[0], ea[1]}, {eb[0], eb[1]})) return;
+  ++c.ee_tests;
+  CcdHit hit = tester_.edge_edge(ee_query(a, b));
+  if (!hit.hit) return;
+  ++c.contacts_ee;
+  out.push_back(Contact{ContactKind::ee, a, b, {ea[0], ea[1], eb[0], eb[1]}, hit.toi, hit.coords});
+}
+
+void NarrowPhase::test_face_pair(Index fa, Index fb, std::vector<Contact>& out, StepCounters& c,
+                                 StepResult* record) const {
+  const std::uint8_t ma = owners_.owned_mask[fa], mb = owners_.owned_mask[fb];
+  const Face &ta = mesh_.face(fa), &tb = mesh_.face(fb);
+  for (int j = 0; j < 3; ++j) {
+    if (ma & (1u << j)) {
+      test_vf(ta[j], fb, out, c);
+      if (record) record->tested_vf.push_back({ta[j], fb});
+    }
+    if (mb & (1u << j)) {
+      test_vf(tb[j], fa, out, c);
+      if (record) record->tested_vf.push_back({tb[j], fa});
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    if (!(ma & (8u << i))) continue;
+    for (int j = 0; j < 3; ++j) {
+      if (!(mb & (8u << j))) continue;
+      Index a = mesh_.face_edges(fa)[i], b = mesh_.face_edges(fb)[j];
+      test_ee(a, b, out, c);
+      if (record) record->tested_ee.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+}
+
+}  // namespace ccdlab

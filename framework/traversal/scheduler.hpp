@@ -1,0 +1,39 @@
+#pragma once
+// TraversalScheduler: decides how the BVTT is traversed (sequentially, split into parallel tasks, from a
+// front kept across steps, …). Every scheduler must yield exactly the same candidate set as `sequential`.
+// The BV type is chosen at run time (bv.k) but the kernels are templates: a scheduler receives an AnyBvs
+// variant and dispatches once per call (std::visit), never per node.
+#include <memory>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "framework/geometry/kdop.hpp"
+#include "framework/hierarchy/bvh.hpp"
+#include "framework/traversal/candidates.hpp"
+
+namespace ccdlab {
+
+using AnyBvs = std::variant<std::vector<KDop<6>>, std::vector<KDop<14>>, std::vector<KDop<18>>, std::vector<KDop<26>>>;
+
+/// One traversal pass of a step: a BVH against itself (self-collision) or against another body's BVH.
+/// `id` is stable across steps so stateful schedulers (e.g. a BVTT front) can keep per-pass data.
+struct TraversalPass {
+  int id = 0;
+  const TriMesh* mesh = nullptr;
+  const BvhTopology* bvh_a = nullptr;
+  const AnyBvs* bvs_a = nullptr;
+  const BvhTopology* bvh_b = nullptr;  ///< == bvh_a for self passes
+  const AnyBvs* bvs_b = nullptr;
+  bool self = true;
+};
+
+class TraversalScheduler {
+ public:
+  virtual ~TraversalScheduler() = default;
+  [[nodiscard]] virtual std::string_view name() const = 0;
+  /// Appends the candidate face pairs of the pass to out (order unspecified) and counts BV tests.
+  virtual void collect(const TraversalPass& pass, TraversalOutput& out) = 0;
+};
+
+}  // namespace ccdlab

@@ -1,0 +1,194 @@
+#include "strategies/testers/float_tester.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "framework/geometry/distance.hpp"
+
+namespace ccdlab {
+namespace {
+
+/// A point moving linearly: x(t) = x0 + t·dx.
+struct Moving {
+  Vec3 x0, dx;
+  [[nodiscard]] Vec3 at(double t) const { return x0 + t * dx; }
+};
+
+/// A short list of candidate times, without heap allocation (at most 2 + 3 + 3 + 16 entries are pushed).
+struct TimeList {
+  std::array<double, 32> v;
+  std::size_t n = 0;
+  void push_back(double t) {
+    if (n < v.size()) v[n++] = t;
+  }
+  [[nodiscard]] std::size_t size() const { return n; }
+  double& operator[](std::size_t i) { return v[i]; }
+  double* begin() { return v.data(); }
+  double* end() { return v.data() + n; }
+};
+
+/// Appends the roots in [0, 1] of a t² + b t + c (numerically stable form).
+void quadratic_roots(double a, double b, double c, TimeList& all) {
+  TimeList out;
+  const double scale = std::max({std::abs(a), std::abs(b), std::abs(c)});
+  if (scale == 0) return;
+  if (std::abs(a) <= 1e-14 * scale) {
+    if (std::abs(b) > 1e-14 * scale) out.push_back(-c / b);
+  } else {
+    double disc = b * b - 4 * a * c;
+    if (disc < 0) {
+      if (disc > -1e-12 * b * b) disc = 0; else return;
+    }
+    double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+    out.push_back(q / a);
+    if (q != 0) out.push_back(c / q);
+  }
+  for (double t : out)
+    if (t >= 0 && t <= 1) all.push_back(t);
+}
+
+/// Bounding-box diagonal of the query's points at t0 and t1: the length every tolerance is relative to.
+template <std::size_t N>
+double extent(const std::array<const Vec3*, N>& pts) {
+  Box3 b;
+  for (const Vec3* p : pts) b.grow(*p);
+  return b.extent().norm();
+}
+
+/// Candidate times of contact: t = 0, t = 1, the roots of f(t) = A(t)·(B(t)×C(t)) in [0, 1], and values
+/// of t where f touches zero at a critical point. f is evaluated from the positions at t (not from the
+/// expanded coefficients), which is more accurate near the roots.
+template <class F>
+void coplanarity_times(const Moving& A, const Moving& B, const Moving& C, F&& f, double f_scale,
+                       TimeList& times, bool& degenerate) {
+  const Vec3 &A0 = A.x0, &dA = A.dx, &B0 = B.x0, &dB = B.dx, &C0 = C.x0, &dC = C.dx;
+  const double d = A0.dot(B0.cross(C0));
+  const double c = dA.dot(B0.cross(C0)) + A0.dot(dB.cross(C0)) + A0.dot(B0.cross(dC));
+  const double b = dA.dot(dB.cross(C0)) + dA.dot(B0.cross(dC)) + A0.dot(dB.cross(dC));
+  const double a = dA.dot(dB.cross(dC));
+  const double zero = 1e-12 * f_scale;
+  degenerate = std::max({std::abs(a), std::abs(b), std::abs(c), std::abs(d)}) <= zero;
+  times.push_back(0);
+  times.push_back(1);
+  if (degenerate) return;
+  TimeList breaks;
+  breaks.push_back(0);
+  breaks.push_back(1);
+  quadratic_roots(3 * a, 2 * b, c, breaks);
+  std::sort(breaks.begin(), breaks.end());
+  std::array<double, 4> values;
+  for (std::size_t i = 0; i < breaks.size(); ++i) {
+    values[i] = f(breaks[i]);
+    if (std::abs(values[i]) <= zero) times.push_back(breaks[i]);  // touching (double) root
+  }
+  for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+    double lo = breaks[i], hi = breaks[i + 1], flo = values[i], fhi = values[i + 1];
+    if (!((flo < 0 && fhi > 0) || (flo > 0 && fhi < 0))) continue;
+    // Illinois false position: monotone on [lo, hi], one root.
+    int side = 0;
+    double t = lo;
+    for (int it = 0; it < 100 && hi - lo > 1e-15; ++it) {
+      t = (lo * fhi - hi * flo) / (fhi - flo);
+      if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+      double ft = f(t);
+      if (ft == 0) { lo = hi = t; break; }
+      if ((ft < 0) == (flo < 0)) {
+        lo = t, flo = ft;
+        if (side == -1) fhi *= 0.5;
+        side = -1;
+      } else {
+        hi = t, fhi = ft;
+        if (side == 1) flo *= 0.5;
+        side = 1;
+      }
+    }
+    times.push_back(0.5 * (lo + hi));
+  }
+}
+
+/// Coplanar motion: times where point p crosses the line (a, b), from the in-plane component along n.
+void crossing_times(const Moving& p, const Moving& a, const Moving& b, const Vec3& n, TimeList& times) {
+  // g(t) = n · ((p - a) × (b - a)), a quadratic in t.
+  const Vec3 r0 = p.x0 - a.x0, dr = p.dx - a.dx, e0 = b.x0 - a.x0, de = b.dx - a.dx;
+  const double c = n.dot(r0.cross(e0));
+  const double bq = n.dot(dr.cross(e0) + r0.cross(de));
+  const double aq = n.dot(dr.cross(de));
+  quadratic_roots(aq, bq, c, times);
+}
+
+/// The most reliable normal of the plane holding these points (largest cross product of differences).
+Vec3 plane_normal(const std::array<Vec3, 4>& p) {
+  Vec3 best = Vec3::Zero();
+  for (int i = 1; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) {
+      Vec3 n = (p[i] - p[0]).cross(p[j] - p[0]);
+      if (n.squaredNorm() > best.squaredNorm()) best = n;
+    }
+  if (best.squaredNorm() == 0) {  // all collinear (or coincident): any normal of the line
+    Vec3 d = Vec3::Zero();
+    for (int i = 1; i < 4; ++i) if ((p[i] - p[0]).squaredNorm() > d.squaredNorm()) d = p[i] - p[0];
+    best = d.squaredNorm() > 0 ? d.unitOrthogonal() : Vec3::UnitZ();
+  }
+  return best;
+}
+
+}  // namespace
+
+CcdHit FloatTester::vertex_face(const VertexFaceQuery& q) const {
+  const double L = extent<8>({&q.v_t0, &q.f0_t0, &q.f1_t0, &q.f2_t0, &q.v_t1, &q.f0_t1, &q.f1_t1, &q.f2_t1});
+  const Vec3 o = q.f0_t0;  // work relative to one point: less cancellation
+  const Moving v{q.v_t0 - o, q.v_t1 - q.v_t0}, f0{q.f0_t0 - o, q.f0_t1 - q.f0_t0},
+      f1{q.f1_t0 - o, q.f1_t1 - q.f1_t0}, f2{q.f2_t0 - o, q.f2_t1 - q.f2_t0};
+  const Moving A{v.x0 - f0.x0, v.dx - f0.dx}, B{f1.x0 - f0.x0, f1.dx - f0.dx}, C{f2.x0 - f0.x0, f2.dx - f0.dx};
+  auto f = [&](double t) { return A.at(t).dot(B.at(t).cross(C.at(t))); };
+  TimeList times;
+  bool degenerate = false;
+  coplanarity_times(A, B, C, f, L * L * L, times, degenerate);
+  if (degenerate) {
+    for (double t : {0.0, 1.0}) {
+      Vec3 n = plane_normal({v.at(t), f0.at(t), f1.at(t), f2.at(t)});
+      crossing_times(v, f0, f1, n, times);
+      crossing_times(v, f1, f2, n, times);
+      crossing_times(v, f2, f0, n, times);
+    }
+  }
+  std::sort(times.begin(), times.end());
+  const double reach = params_.thickness + rel_tolerance * L;
+  for (double t : times) {
+    auto c = closest_point_triangle(v.at(t), f0.at(t), f1.at(t), f2.at(t));
+    if (c.distance_sq <= reach * reach) return {true, t, {c.bary[1], c.bary[2]}};
+  }
+  return {};
+}
+
+CcdHit FloatTester::edge_edge(const EdgeEdgeQuery& q) const {
+  const double L =
+      extent<8>({&q.ea0_t0, &q.ea1_t0, &q.eb0_t0, &q.eb1_t0, &q.ea0_t1, &q.ea1_t1, &q.eb0_t1, &q.eb1_t1});
+  const Vec3 o = q.ea0_t0;
+  const Moving a0{q.ea0_t0 - o, q.ea0_t1 - q.ea0_t0}, a1{q.ea1_t0 - o, q.ea1_t1 - q.ea1_t0},
+      b0{q.eb0_t0 - o, q.eb0_t1 - q.eb0_t0}, b1{q.eb1_t0 - o, q.eb1_t1 - q.eb1_t0};
+  const Moving A{b0.x0 - a0.x0, b0.dx - a0.dx}, B{a1.x0 - a0.x0, a1.dx - a0.dx}, C{b1.x0 - b0.x0, b1.dx - b0.dx};
+  auto f = [&](double t) { return A.at(t).dot(B.at(t).cross(C.at(t))); };
+  TimeList times;
+  bool degenerate = false;
+  coplanarity_times(A, B, C, f, L * L * L, times, degenerate);
+  if (degenerate) {
+    for (double t : {0.0, 1.0}) {
+      Vec3 n = plane_normal({a0.at(t), a1.at(t), b0.at(t), b1.at(t)});
+      crossing_times(a0, b0, b1, n, times);
+      crossing_times(a1, b0, b1, n, times);
+      crossing_times(b0, a0, a1, n, times);
+      crossing_times(b1, a0, a1, n, times);
+    }
+  }
+  std::sort(times.begin(), times.end());
+  const double reach = params_.thickness + rel_tolerance * L;
+  for (double t : times) {
+    auto c = closest_segment_segment(a0.at(t), a1.at(t), b0.at(t), b1.at(t));
+    if (c.distance_sq <= reach * reach) return {true, t, {c.s, c.t}};
+  }
+  return {};
+}
+
+}  // namespace ccdlab
