@@ -89,6 +89,9 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
 
   auto t = Clock::now();
   if (!built_) build_hierarchies(x_t0, x_t1);
+  tm.build_ms = ms_since(t);
+
+  t = Clock::now();
   compute_face_bvs(mesh_, x_t0, x_t1, strategies_.tester->thickness(), face_bvs_);
   tm.swept_bv_ms = ms_since(t);
 

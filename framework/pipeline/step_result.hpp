@@ -23,12 +23,13 @@ struct StepCounters {
 
 /// Wall-clock milliseconds per phase of one step (data flow of design.md).
 struct StepTimings {
-  double swept_bv_ms = 0;   ///< swept k-DOP of every face (and the BVH build, on the first step)
+  double build_ms = 0;      ///< top-down BVH build: first step only, 0 afterwards
+  double swept_bv_ms = 0;   ///< swept k-DOP of every face
   double refit_ms = 0;      ///< bottom-up refit
   double traverse_ms = 0;   ///< BVTT traversal → candidate face pairs
   double narrow_ms = 0;     ///< feature pairs of candidates → elementary tests
   double orphan_ms = 0;     ///< orphan set → elementary tests
-  double total_ms = 0;
+  double total_ms = 0;      ///< all phases, build included
 };
 
 struct StepResult {

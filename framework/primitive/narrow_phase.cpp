@@ -10,14 +10,23 @@ void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1) {
     vertex_box_[v].lo = x_t0[v].cwiseMin(x_t1[v]);
     vertex_box_[v].hi = x_t0[v].cwiseMax(x_t1[v]);
   }
-}
-
-bool NarrowPhase::boxes_overlap(std::initializer_list<Index> va, std::initializer_list<Index> vb) const {
-  Box3 a, b;
-  for (Index v : va) a.grow(vertex_box_[v]);
-  for (Index v : vb) b.grow(vertex_box_[v]);
-  a.inflate(tester_.thickness());
-  return a.overlaps(b);
+  const double eta = tester_.thickness();
+  edge_box_.resize(mesh_.num_edges());
+  for (Index e = 0; e < mesh_.num_edges(); ++e) {
+    Box3 b = vertex_box_[mesh_.edge(e)[0]];
+    b.grow(vertex_box_[mesh_.edge(e)[1]]);
+    b.inflate(eta);
+    edge_box_[e] = b;
+  }
+  face_box_.resize(mesh_.num_faces());
+  for (Index f = 0; f < mesh_.num_faces(); ++f) {
+    const Face& t = mesh_.face(f);
+    Box3 b = vertex_box_[t[0]];
+    b.grow(vertex_box_[t[1]]);
+    b.grow(vertex_box_[t[2]]);
+    b.inflate(eta);
+    face_box_[f] = b;
+  }
 }
 
 VertexFaceQuery NarrowPhase::vf_query(Index v, Index f) const {
@@ -35,7 +44,7 @@ EdgeEdgeQuery NarrowPhase::ee_query(Index a, Index b) const {
 void NarrowPhase::test_vf(Index v, Index f, std::vector<Contact>& out, StepCounters& c, bool box_cull) const {
   const Face& t = mesh_.face(f);
   ++c.vf_pairs;
-  if (box_cull && !boxes_overlap({v}, {t[0], t[1], t[2]})) return;
+  if (box_cull && !face_box_[f].overlaps(vertex_box_[v])) return;
   ++c.vf_tests;
   CcdHit hit = tester_.vertex_face(vf_query(v, f));
   if (!hit.hit) return;
@@ -47,7 +56,7 @@ void NarrowPhase::test_ee(Index a, Index b, std::vector<Contact>& out, StepCount
   if (a > b) std::swap(a, b);
   const Edge &ea = mesh_.edge(a), &eb = mesh_.edge(b);
   ++c.ee_pairs;
-  if (box_cull && !boxes_overlap({ea[0], ea[1]}, {eb[0], eb[1]})) return;
+  if (box_cull && !edge_box_[a].overlaps(edge_box_[b])) return;  // both inflated: a 2η margin, still conservative
   ++c.ee_tests;
   CcdHit hit = tester_.edge_edge(ee_query(a, b));
   if (!hit.hit) return;

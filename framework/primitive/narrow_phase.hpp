@@ -15,7 +15,7 @@ class NarrowPhase {
   NarrowPhase(const TriMesh& mesh, const Ownership& owners, const PrimitiveTester& tester)
       : mesh_(mesh), owners_(owners), tester_(tester) {}
 
-  /// Sets the two frames of the step and computes the swept box of every vertex.
+  /// Sets the two frames of the step and computes the swept box of every vertex, edge and face.
   void begin_step(const Positions& x_t0, const Positions& x_t1);
 
   /// One VF feature pair (v ∉ f): box cull, then the elementary test; appends a contact on hit.
@@ -30,14 +30,17 @@ class NarrowPhase {
   [[nodiscard]] EdgeEdgeQuery ee_query(Index a, Index b) const;
 
  private:
-  [[nodiscard]] bool boxes_overlap(std::initializer_list<Index> va, std::initializer_list<Index> vb) const;
 
   const TriMesh& mesh_;
   const Ownership& owners_;
   const PrimitiveTester& tester_;
   const Positions* x_t0_ = nullptr;
   const Positions* x_t1_ = nullptr;
+  // Swept boxes of every vertex, edge and face over the step; the face and edge boxes are inflated by η so
+  // each cull is a single overlap test.
   std::vector<Box3> vertex_box_;
+  std::vector<Box3> edge_box_;
+  std::vector<Box3> face_box_;
 };
 
 }  // namespace ccdlab

@@ -1,0 +1,50 @@
+// `ccdlab list`: the registered strategies with their parameters. `ccdlab info`: how this binary was built.
+#include <omp.h>
+
+#include "ccdlab/build_info.hpp"
+#include "experiments/cli/commands.hpp"
+#include "strategies/registry.hpp"
+
+namespace ccdlab::cli {
+namespace {
+
+template <class R>
+void print_registry(const R& registry, const std::string& title) {
+  fmt::print("{}:\n", title);
+  for (const auto& e : registry.entries()) {
+    fmt::print("  {:<12} {}\n", e.name, e.description);
+    for (const auto& p : e.params) {
+      std::string range;
+      if (p.type == ParamType::integer || p.type == ParamType::real)
+        range = fmt::format(" in [{}, {}]", p.min, p.max);
+      fmt::print("      {:<16} {} (default {}){} — {}\n", p.name, to_string(p.type), default_text(p), range, p.description);
+    }
+  }
+  fmt::print("\n");
+}
+
+}  // namespace
+
+int list_command() {
+  fmt::print("bv.k: 6, 14, 18, 26 (k-DOP axis tables in framework/geometry/kdop.hpp)\n\n");
+  print_registry(builder_registry(), "hierarchy");
+  print_registry(scheduler_registry(), "scheduler");
+  print_registry(tester_registry(), "tester");
+  print_registry(scene_registry(), "scene.builtin");
+  return 0;
+}
+
+int info_command() {
+  fmt::print("ccdlab {}\n", build_info::git_revision);
+  fmt::print("  compiler   {}\n", build_info::compiler);
+  fmt::print("  build type {}\n", build_info::build_type);
+  fmt::print("  flags      {}\n", build_info::cxx_flags);
+#ifdef _OPENMP
+  fmt::print("  OpenMP     {} (max threads {}, processors {})\n", _OPENMP, omp_get_max_threads(), omp_get_num_procs());
+#else
+  fmt::print("  OpenMP     off\n");
+#endif
+  return 0;
+}
+
+}  // namespace ccdlab::cli

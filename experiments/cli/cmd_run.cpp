@@ -1,0 +1,142 @@
+// `ccdlab run CONFIG.yaml [--set key=value …] [--json]`: runs an experiment step by step; prints a per-step
+// table (or one JSON summary), writes steps.csv, steps.jsonl, config.yaml (and contacts.csv) to output.dir.
+#include <filesystem>
+#include <fstream>
+
+#include <omp.h>
+#include <unistd.h>
+
+#include "ccdlab/build_info.hpp"
+#include "experiments/cli/commands.hpp"
+#include "experiments/cli/report.hpp"
+#include "framework/util/error.hpp"
+#include "framework/util/progress.hpp"
+#include "strategies/registry.hpp"
+
+namespace ccdlab::cli {
+
+int run_command(const RunOptions& o) {
+  const Registries reg = builtin_registries();
+  const ExperimentConfig config = load_experiment(o.config, o.overrides, reg);
+  omp_set_num_threads(config.threads);
+  const nlohmann::json config_json = to_json(config);
+
+  const MeshSequence scene = make_scene(config, reg);
+  CcdPipeline pipeline(scene.topology(), scene.bodies(), make_strategies(config, reg));
+
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(config.output.dir, ec);
+  if (ec) fail("output.dir: cannot create '{}': {}", config.output.dir, ec.message());
+  auto open = [&](const std::string& name) {
+    std::ofstream f(fs::path(config.output.dir) / name);
+    if (!f) fail("output.dir: cannot write '{}'", (fs::path(config.output.dir) / name).string());
+    return f;
+  };
+  std::ofstream yaml = open("config.yaml");
+  yaml << "# resolved by ccdlab " << build_info::git_revision << " from " << config.source << "\n" << to_yaml(config_json);
+  std::ofstream csv, jsonl, contacts_csv;
+  const std::string rev = build_info::git_revision;
+  const std::string fixed_cols = fmt::format("{},{},{},{},{},{}", config.name, config.scheduler.name, config.threads,
+                                             config.k, config.tester.name, rev);
+  if (config.output.csv) {
+    csv = open("steps.csv");
+    csv << "step,frame_t0,frame_t1," << csv_header() << ",experiment,scheduler,threads,k,tester,git_revision\n";
+  }
+  if (config.output.jsonl) {
+    jsonl = open("steps.jsonl");
+    jsonl << nlohmann::json{{"type", "config"}, {"config", config_json}, {"git_revision", rev},
+                            {"scene", scene.description()}, {"triangles", scene.topology().num_faces()},
+                            {"vertices", scene.topology().num_vertices()}}
+                 .dump()
+          << "\n";
+  }
+  if (config.output.contacts) {
+    contacts_csv = open("contacts.csv");
+    contacts_csv << "step,kind,a,b,c,d,toi\n";
+  }
+
+  if (!o.json) {
+    fmt::print("ccdlab run {} — {}\n", config.name, scene.description());
+    fmt::print("  k={} hierarchy={} scheduler={} threads={} tester={}  ({} triangles, {} orphan VF + {} orphan EE, rev {})\n\n",
+               config.k, config.hierarchy.name, config.scheduler.name, config.threads, config.tester.name,
+               scene.topology().num_faces(), pipeline.orphans().vf.size(), pipeline.orphans().ee.size(), rev);
+    print_table_header(stdout);
+  }
+
+  // When the table rows go to the same terminal they are the progress; otherwise show a progress line.
+  const bool table_on_terminal = !o.json && isatty(STDOUT_FILENO);
+  Progress progress("ccdlab run", scene.num_steps(), o.progress && Progress::stderr_is_terminal() && !table_on_terminal);
+  std::vector<double> total_ms, swept_ms, refit_ms, traverse_ms, narrow_ms, orphan_ms;
+  std::uint64_t hash = contact_set_hash({}), vf = 0, ee = 0, bv_tests = 0, candidates = 0, vf_tests = 0, ee_tests = 0;
+  Positions x_t0 = scene.frame(0);
+  for (int s = 0; s < scene.num_steps(); ++s) {
+    Positions x_t1 = scene.frame(s + 1);
+    StepResult r = pipeline.step(x_t0, x_t1);
+    const std::uint64_t step_hash = contact_set_hash(r.contacts);
+    hash = contact_set_hash(r.contacts, hash);
+    vf += r.counters.contacts_vf;
+    ee += r.counters.contacts_ee;
+    bv_tests += r.counters.bv_tests;
+    candidates += r.counters.candidate_pairs;
+    vf_tests += r.counters.vf_tests;
+    ee_tests += r.counters.ee_tests;
+    total_ms.push_back(r.timings.total_ms);
+    swept_ms.push_back(r.timings.swept_bv_ms);
+    refit_ms.push_back(r.timings.refit_ms);
+    traverse_ms.push_back(r.timings.traverse_ms);
+    narrow_ms.push_back(r.timings.narrow_ms);
+    orphan_ms.push_back(r.timings.orphan_ms);
+    const std::string &f0 = scene.frame_label(s), &f1 = scene.frame_label(s + 1);
+    if (!o.json) print_table_row(stdout, fmt::format("{}>{}", f0, f1), r);
+    if (csv.is_open()) csv << fmt::format("{},{},{},{},{}\n", s, f0, f1, csv_row(r, step_hash), fixed_cols);
+    if (jsonl.is_open()) {
+      nlohmann::json j = step_json(r);
+      j["type"] = "step";
+      j["step"] = s;
+      j["frame_t0"] = f0;
+      j["frame_t1"] = f1;
+      j["hash"] = fmt::format("{:016x}", step_hash);
+      jsonl << j.dump() << "\n";
+    }
+    if (contacts_csv.is_open())
+      for (const Contact& c : r.contacts) contacts_csv << s << "," << contact_row(c) << "\n";
+    x_t0 = std::move(x_t1);
+    progress.update(s + 1);
+  }
+
+  nlohmann::json summary = {
+      {"experiment", config.name},
+      {"scene", scene.description()},
+      {"triangles", scene.topology().num_faces()},
+      {"steps", scene.num_steps()},
+      {"ms_per_step", median(total_ms)},
+      {"ms_per_phase",
+       {{"swept_bv", median(swept_ms)},
+        {"refit", median(refit_ms)},
+        {"traverse", median(traverse_ms)},
+        {"narrow", median(narrow_ms)},
+        {"orphans", median(orphan_ms)}}},
+      {"contacts", {{"vf", vf}, {"ee", ee}}},
+      {"counters", {{"bv_tests", bv_tests}, {"candidate_pairs", candidates}, {"vf_tests", vf_tests}, {"ee_tests", ee_tests}}},
+      {"hash", fmt::format("{:016x}", hash)},
+      {"config", config_json},
+      {"git_revision", rev},
+      {"results", config.output.dir}};
+  if (jsonl.is_open()) {
+    nlohmann::json j = summary;
+    j["type"] = "summary";
+    jsonl << j.dump() << "\n";
+  }
+  if (o.json) {
+    fmt::print("{}\n", summary.dump(2));
+  } else {
+    fmt::print("\n{} steps: median {:.2f} ms/step (swept BV {:.2f}, refit {:.2f}, traverse {:.2f}, narrow {:.2f}, "
+               "orphans {:.2f}); contacts vf={} ee={}; hash {:016x}\nresults in {}/\n",
+               scene.num_steps(), median(total_ms), median(swept_ms), median(refit_ms), median(traverse_ms),
+               median(narrow_ms), median(orphan_ms), vf, ee, hash, config.output.dir);
+  }
+  return 0;
+}
+
+}  // namespace ccdlab::cli

@@ -1,0 +1,32 @@
+#pragma once
+// The ccdlab subcommands. Each returns the process exit code; user errors are thrown as ccdlab::Error and
+// turned into a message on stderr and exit code 2 by main.
+#include <string>
+#include <vector>
+
+namespace ccdlab::cli {
+
+struct RunOptions {
+  std::string config;
+  std::vector<std::string> overrides;  ///< --set key=value
+  bool json = false;
+  bool progress = true;
+};
+int run_command(const RunOptions& o);
+
+struct StepOptions {
+  std::string mesh_t0, mesh_t1;
+  int k = 18;
+  std::string scheduler = "sequential";
+  std::string hierarchy = "median";
+  std::string tester = "float";
+  int threads = 1;
+  std::string contacts_csv;
+  bool json = false;
+};
+int step_command(const StepOptions& o);
+
+int list_command();
+int info_command();
+
+}  // namespace ccdlab::cli

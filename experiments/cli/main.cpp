@@ -1,0 +1,57 @@
+// ccdlab: command-line entry point. Subcommands: run, step, list, info (see README.md).
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "experiments/cli/commands.hpp"
+#include "framework/util/error.hpp"
+
+int main(int argc, char** argv) {
+  using namespace ccdlab::cli;
+  CLI::App app{"ccdlab: continuous collision detection for deforming cloth"};
+  app.require_subcommand(1);
+
+  RunOptions run;
+  bool no_progress = false;
+  auto* run_cmd = app.add_subcommand("run", "run a YAML experiment: per-step table, CSV/JSONL results");
+  run_cmd->add_option("config", run.config, "experiment YAML file")->required();
+  run_cmd->add_option("--set", run.overrides, "override a config key, e.g. --set bv.k=26 (repeatable)");
+  run_cmd->add_flag("--json", run.json, "print one JSON summary instead of the table");
+  run_cmd->add_flag("--no-progress", no_progress, "no progress line on stderr");
+
+  StepOptions step;
+  auto* step_cmd = app.add_subcommand("step", "one CCD step between two mesh files (PLY or OBJ)");
+  step_cmd->add_option("t0", step.mesh_t0, "mesh at the start of the step")->required();
+  step_cmd->add_option("t1", step.mesh_t1, "mesh at the end of the step (same topology)")->required();
+  step_cmd->add_option("--k", step.k, "k-DOP: 6, 14, 18 or 26")->capture_default_str();
+  step_cmd->add_option("--scheduler", step.scheduler, "traversal scheduler")->capture_default_str();
+  step_cmd->add_option("--hierarchy", step.hierarchy, "hierarchy builder")->capture_default_str();
+  step_cmd->add_option("--threads", step.threads, "threads")->capture_default_str();
+  step_cmd->add_option("--tester", step.tester, "primitive tester")->capture_default_str();
+  step_cmd->add_option("--contacts", step.contacts_csv, "write contacts to this CSV (kind,a,b,c,d,toi)");
+  step_cmd->add_flag("--json", step.json, "print JSON instead of the table");
+
+  auto* list_cmd = app.add_subcommand("list", "registered strategies and their parameters");
+  auto* info_cmd = app.add_subcommand("info", "compiler, flags, OpenMP, git revision");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (*run_cmd) {
+      run.progress = !no_progress;
+      return run_command(run);
+    }
+    if (*step_cmd) return step_command(step);
+    if (*list_cmd) return list_command();
+    if (*info_cmd) return info_command();
+  } catch (const ccdlab::Error& e) {
+    fmt::print(stderr, "ccdlab: error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "ccdlab: internal error: {}\n", e.what());
+    return 3;
+  }
+  return 1;
+}

@@ -1,0 +1,73 @@
+#include "experiments/cli/report.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+namespace ccdlab::cli {
+
+nlohmann::json step_json(const StepResult& r) {
+  const StepCounters& c = r.counters;
+  const StepTimings& t = r.timings;
+  return {{"contacts", {{"vf", c.contacts_vf}, {"ee", c.contacts_ee}}},
+          {"counters",
+           {{"bv_tests", c.bv_tests},
+            {"candidate_pairs", c.candidate_pairs},
+            {"vf_pairs", c.vf_pairs},
+            {"ee_pairs", c.ee_pairs},
+            {"orphan_vf", c.orphan_vf},
+            {"orphan_ee", c.orphan_ee},
+            {"vf_tests", c.vf_tests},
+            {"ee_tests", c.ee_tests}}},
+          {"ms",
+           {{"total", t.total_ms},
+            {"build", t.build_ms},
+            {"swept_bv", t.swept_bv_ms},
+            {"refit", t.refit_ms},
+            {"traverse", t.traverse_ms},
+            {"narrow", t.narrow_ms},
+            {"orphans", t.orphan_ms}}}};
+}
+
+std::string csv_header() {
+  return "bv_tests,candidate_pairs,vf_pairs,ee_pairs,orphan_vf,orphan_ee,vf_tests,ee_tests,contacts_vf,contacts_ee,"
+         "build_ms,swept_bv_ms,refit_ms,traverse_ms,narrow_ms,orphan_ms,total_ms,hash";
+}
+
+std::string csv_row(const StepResult& r, std::uint64_t step_hash) {
+  const StepCounters& c = r.counters;
+  const StepTimings& t = r.timings;
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:016x}", c.bv_tests,
+                     c.candidate_pairs, c.vf_pairs, c.ee_pairs, c.orphan_vf, c.orphan_ee, c.vf_tests, c.ee_tests,
+                     c.contacts_vf, c.contacts_ee, t.build_ms, t.swept_bv_ms, t.refit_ms, t.traverse_ms, t.narrow_ms,
+                     t.orphan_ms, t.total_ms, step_hash);
+}
+
+std::string contact_row(const Contact& c) {
+  return fmt::format("{},{},{},{},{},{:.17g}", to_string(c.kind), c.vertices[0], c.vertices[1], c.vertices[2],
+                     c.vertices[3], c.toi);
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  if (v.size() % 2) return *mid;
+  return 0.5 * (*mid + *std::max_element(v.begin(), mid));
+}
+
+void print_table_header(std::FILE* out) {
+  fmt::print(out, "{:>9} {:>10} {:>9} {:>9} {:>8} {:>8} {:>9} {:>9} | {:>8} {:>7} {:>7} {:>8} {:>8} {:>8}\n", "step",
+             "bv_tests", "cand", "vf_tests", "ee_tests", "orphans", "vf_hits", "ee_hits", "total_ms", "bv_ms",
+             "refit", "traverse", "narrow", "orphan");
+}
+
+void print_table_row(std::FILE* out, const std::string& step, const StepResult& r) {
+  const StepCounters& c = r.counters;
+  const StepTimings& t = r.timings;
+  fmt::print(out, "{:>9} {:>10} {:>9} {:>9} {:>8} {:>8} {:>9} {:>9} | {:>8.2f} {:>7.2f} {:>7.2f} {:>8.2f} {:>8.2f} {:>8.2f}\n",
+             step, c.bv_tests, c.candidate_pairs, c.vf_tests, c.ee_tests, c.orphan_vf + c.orphan_ee, c.contacts_vf,
+             c.contacts_ee, t.total_ms, t.swept_bv_ms, t.refit_ms, t.traverse_ms, t.narrow_ms, t.orphan_ms);
+}
+
+}  // namespace ccdlab::cli

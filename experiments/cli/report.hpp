@@ -1,0 +1,30 @@
+#pragma once
+// What the CLI prints and writes about steps: JSON of a StepResult, table rows, contact rows, summaries.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "framework/pipeline/step_result.hpp"
+
+namespace ccdlab::cli {
+
+/// Counters and per-phase milliseconds of one step.
+nlohmann::json step_json(const StepResult& r);
+
+/// The columns of steps.csv after step, frame_t0, frame_t1 (counters, phases, hash).
+std::string csv_header();
+std::string csv_row(const StepResult& r, std::uint64_t step_hash);
+
+/// One contact as "vf,v,f0,f1,f2,toi" or "ee,a0,a1,b0,b1,toi" (vertex ids of the input mesh).
+std::string contact_row(const Contact& c);
+
+/// Median of a list (0 for an empty list).
+double median(std::vector<double> values);
+
+/// Prints the human-readable per-step table: header once, then one row per step.
+void print_table_header(std::FILE* out);
+void print_table_row(std::FILE* out, const std::string& step, const StepResult& r);
+
+}  // namespace ccdlab::cli

@@ -1,0 +1,176 @@
+#include "framework/config/experiment.hpp"
+
+#include <filesystem>
+
+#include <yaml-cpp/yaml.h>
+
+#include "framework/config/yaml_reader.hpp"
+
+namespace ccdlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A path from the config file is relative to the file's folder; one from --set to the working directory.
+std::string resolve_path(const std::string& p, const std::string& config_path, bool from_command_line) {
+  fs::path path(p);
+  if (path.is_absolute() || from_command_line) return path.lexically_normal().string();
+  return (fs::path(config_path).parent_path() / path).lexically_normal().string();
+}
+
+SceneConfig read_scene(const YamlReader& r, const YAML::Node& node, const std::string& config_path,
+                       const Registries& reg) {
+  SceneConfig scene;
+  r.require_map(node, "scene");
+  if (node["builtin"] && node["frames"])
+    r.error(node, "scene", "either 'builtin' (a generated scene) or 'frames' (mesh files), not both");
+  if (node["frames"]) {
+    scene.builtin = false;
+    r.check_keys(node, "scene", {"frames", "first", "last", "self_collision"});
+    const YAML::Node frames = node["frames"];
+    const bool cli = r.from_command_line("scene.frames");
+    if (frames.IsSequence()) {
+      if (node["first"] || node["last"]) r.error(node, "scene", "'first'/'last' only with a frame pattern");
+      for (std::size_t i = 0; i < frames.size(); ++i)
+        scene.files.push_back(resolve_path(r.string(frames[i], fmt::format("scene.frames[{}]", i)), config_path, cli));
+    } else {
+      std::string pattern = resolve_path(r.string(frames, "scene.frames"), config_path, cli);
+      if (!node["first"] || !node["last"]) r.error(node, "scene", "keys 'first' and 'last' with a frame pattern");
+      int first = int(r.integer(node["first"], "scene.first", 0, 1e9));
+      int last = int(r.integer(node["last"], "scene.last", 0, 1e9));
+      if (last <= first) r.error(node["last"], "scene.last", fmt::format("an integer > first ({})", first));
+      scene.files = expand_frame_pattern(pattern, first, last);
+    }
+    if (scene.files.size() < 2) r.error(frames, "scene.frames", "at least 2 frames");
+    if (node["self_collision"]) scene.self_collision = r.boolean(node["self_collision"], "scene.self_collision");
+    return scene;
+  }
+  if (!node["builtin"]) r.error(node, "scene", "a map with 'builtin: NAME' or 'frames: PATTERN'");
+  // Built-in scene: its parameters sit beside 'builtin' in the same map.
+  YAML::Node as_strategy(YAML::NodeType::Map);
+  for (const auto& kv : node) as_strategy[kv.first.as<std::string>() == "builtin" ? "name" : kv.first.as<std::string>()] = kv.second;
+  try {
+    scene.generator = r.strategy(as_strategy, "scene", reg.scenes);
+  } catch (const Error& e) {
+    // Name the key as the user wrote it.
+    std::string msg = e.what();
+    if (auto pos = msg.find("scene.name"); pos != std::string::npos) msg.replace(pos, 10, "scene.builtin");
+    throw Error(msg);
+  }
+  return scene;
+}
+
+nlohmann::json params_json(const StrategyChoice& c) {
+  nlohmann::json j;
+  j["name"] = c.name;
+  for (const auto& [k, v] : c.params.all()) std::visit([&](const auto& x) { j[k] = x; }, v);
+  return j;
+}
+
+void emit(YAML::Emitter& out, const nlohmann::json& j) {
+  if (j.is_object()) {
+    out << YAML::BeginMap;
+    for (const auto& [k, v] : j.items()) {
+      out << YAML::Key << k << YAML::Value;
+      emit(out, v);
+    }
+    out << YAML::EndMap;
+  } else if (j.is_array()) {
+    out << YAML::BeginSeq;
+    for (const auto& v : j) emit(out, v);
+    out << YAML::EndSeq;
+  } else if (j.is_string()) {
+    out << j.get<std::string>();
+  } else if (j.is_boolean()) {
+    out << j.get<bool>();
+  } else if (j.is_number_integer()) {
+    out << j.get<long long>();
+  } else if (j.is_number()) {
+    out << fmt::format("{}", j.get<double>());
+  } else {
+    out << YAML::Null;
+  }
+}
+
+}  // namespace
+
+ExperimentConfig load_experiment(const std::string& path, const std::vector<std::string>& overrides,
+                                 const Registries& reg) {
+  YAML::Node root = load_yaml_file(path);
+  if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  std::set<std::string> overridden;
+  for (const auto& o : overrides) overridden.insert(apply_override(root, o));
+  YamlReader r(path, overridden);
+  r.check_keys(root, "", {"name", "scene", "bv", "hierarchy", "scheduler", "threads", "tester", "output"});
+
+  ExperimentConfig c;
+  c.source = path;
+  c.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
+  if (!root["scene"]) fail("{}: scene: required key missing (e.g. scene: {{builtin: drape_fold}})", path);
+  c.scene = read_scene(r, root["scene"], path, reg);
+  if (root["bv"]) {
+    r.check_keys(root["bv"], "bv", {"k"});
+    if (root["bv"]["k"]) {
+      c.k = int(r.integer(root["bv"]["k"], "bv.k", 6, 26));
+      if (c.k != 6 && c.k != 14 && c.k != 18 && c.k != 26) r.error(root["bv"]["k"], "bv.k", "one of 6, 14, 18, 26");
+    }
+  }
+  c.hierarchy = root["hierarchy"] ? r.strategy(root["hierarchy"], "hierarchy", reg.builders)
+                                  : StrategyChoice{"median", reg.builders.find("median")->defaults()};
+  c.scheduler = root["scheduler"] ? r.strategy(root["scheduler"], "scheduler", reg.schedulers)
+                                  : StrategyChoice{"sequential", reg.schedulers.find("sequential")->defaults()};
+  c.tester = root["tester"] ? r.strategy(root["tester"], "tester", reg.testers)
+                            : StrategyChoice{"float", reg.testers.find("float")->defaults()};
+  if (root["threads"]) c.threads = int(r.integer(root["threads"], "threads", 1, 1024));
+  c.output.dir = "results/" + c.name;
+  if (const YAML::Node o = root["output"]) {
+    r.check_keys(o, "output", {"dir", "csv", "jsonl", "contacts"});
+    if (o["dir"]) c.output.dir = r.string(o["dir"], "output.dir");
+    if (o["csv"]) c.output.csv = r.boolean(o["csv"], "output.csv");
+    if (o["jsonl"]) c.output.jsonl = r.boolean(o["jsonl"], "output.jsonl");
+    if (o["contacts"]) c.output.contacts = r.boolean(o["contacts"], "output.contacts");
+  }
+  return c;
+}
+
+nlohmann::json to_json(const ExperimentConfig& c) {
+  nlohmann::json j;
+  j["name"] = c.name;
+  if (c.scene.builtin) {
+    nlohmann::json s = params_json(c.scene.generator);
+    s["builtin"] = s["name"];
+    s.erase("name");
+    j["scene"] = s;
+  } else {
+    j["scene"] = {{"frames", c.scene.files}, {"self_collision", c.scene.self_collision}};
+  }
+  j["bv"] = {{"k", c.k}};
+  j["hierarchy"] = params_json(c.hierarchy);
+  j["scheduler"] = params_json(c.scheduler);
+  j["threads"] = c.threads;
+  j["tester"] = params_json(c.tester);
+  j["output"] = {{"dir", c.output.dir}, {"csv", c.output.csv}, {"jsonl", c.output.jsonl}, {"contacts", c.output.contacts}};
+  return j;
+}
+
+std::string to_yaml(const nlohmann::json& j) {
+  YAML::Emitter out;
+  emit(out, j);
+  return std::string(out.c_str()) + "\n";
+}
+
+MeshSequence make_scene(const ExperimentConfig& c, const Registries& reg) {
+  if (c.scene.builtin) return reg.scenes.make(c.scene.generator);
+  return load_frame_files(c.scene.files, c.scene.self_collision);
+}
+
+PipelineStrategies make_strategies(const ExperimentConfig& c, const Registries& reg) {
+  PipelineStrategies s;
+  s.k = c.k;
+  s.builder = reg.builders.make(c.hierarchy);
+  s.scheduler = reg.schedulers.make(c.scheduler);
+  s.tester = reg.testers.make(c.tester);
+  return s;
+}
+
+}  // namespace ccdlab

@@ -1,0 +1,73 @@
+#pragma once
+// The experiment config: YAML → typed structs, in this one place. Every key is validated; an unknown key or
+// a bad value is an Error "file:line: key: expected …, got …". Top-level keys:
+//   name, scene, bv {k}, hierarchy, scheduler, threads, tester, output {dir, csv, jsonl, contacts}
+// Strategies (hierarchy, scheduler, tester, built-in scenes) are a name or a map {name: …, param: …},
+// validated against the registries (see docs/config.md).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "framework/config/registry.hpp"
+#include "framework/hierarchy/bvh.hpp"
+#include "framework/pipeline/ccd_pipeline.hpp"
+#include "framework/primitive/tester.hpp"
+#include "framework/scene/mesh_sequence.hpp"
+#include "framework/traversal/scheduler.hpp"
+
+namespace ccdlab {
+
+using BuilderRegistry = Registry<std::unique_ptr<HierarchyBuilder>>;
+using SchedulerRegistry = Registry<std::unique_ptr<TraversalScheduler>>;
+using TesterRegistry = Registry<std::unique_ptr<PrimitiveTester>>;
+using SceneRegistry = Registry<MeshSequence>;
+
+/// The registries a config is validated against (strategies/registry.hpp provides the built-in ones).
+struct Registries {
+  const BuilderRegistry& builders;
+  const SchedulerRegistry& schedulers;
+  const TesterRegistry& testers;
+  const SceneRegistry& scenes;
+};
+
+struct SceneConfig {
+  bool builtin = true;
+  StrategyChoice generator;         ///< builtin: the scene generator and its parameters
+  std::vector<std::string> files;   ///< from files: one mesh file per frame
+  bool self_collision = true;       ///< from files
+};
+
+struct OutputConfig {
+  std::string dir = "results/run";  ///< CSV, JSONL and the resolved config go here
+  bool csv = true;
+  bool jsonl = true;
+  bool contacts = false;            ///< also write every contact of every step (contacts.csv)
+};
+
+struct ExperimentConfig {
+  std::string name = "run";
+  std::string source;               ///< the YAML file it came from
+  SceneConfig scene;
+  int k = 18;
+  StrategyChoice hierarchy{"median", {}};
+  StrategyChoice scheduler{"sequential", {}};
+  int threads = 1;
+  StrategyChoice tester{"float", {}};
+  OutputConfig output;
+};
+
+/// Reads and validates a YAML experiment, after applying `overrides` ("a.b=value", as from --set).
+ExperimentConfig load_experiment(const std::string& path, const std::vector<std::string>& overrides,
+                                 const Registries& registries);
+
+/// The fully resolved config (every default filled in) as JSON: what result files record.
+nlohmann::json to_json(const ExperimentConfig& config);
+/// JSON → YAML text (for config.yaml beside the results).
+std::string to_yaml(const nlohmann::json& j);
+
+MeshSequence make_scene(const ExperimentConfig& config, const Registries& registries);
+PipelineStrategies make_strategies(const ExperimentConfig& config, const Registries& registries);
+
+}  // namespace ccdlab

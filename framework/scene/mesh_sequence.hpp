@@ -1,0 +1,47 @@
+#pragma once
+// MeshSequence: one topology (all bodies concatenated) and positions per frame; CCD step i = frame i → i+1.
+// Frames are produced on demand by a FrameSource (a file reader or a procedural scene), so a long sequence
+// never has to sit in memory; every frame is checked (vertex count, finite coordinates) when produced.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "framework/geometry/vec.hpp"
+#include "framework/mesh/tri_mesh.hpp"
+#include "framework/pipeline/bodies.hpp"
+
+namespace ccdlab {
+
+class MeshSequence {
+ public:
+  using FrameSource = std::function<Positions(int frame)>;
+
+  MeshSequence(TriMesh topology, std::vector<Body> bodies, std::vector<std::string> frame_labels, FrameSource source,
+               std::string description);
+
+  [[nodiscard]] const TriMesh& topology() const { return topology_; }
+  [[nodiscard]] const std::vector<Body>& bodies() const { return bodies_; }
+  [[nodiscard]] int num_frames() const { return int(labels_.size()); }
+  [[nodiscard]] int num_steps() const { return std::max(0, num_frames() - 1); }
+  /// Label of a frame for reports (file name stem or frame number).
+  [[nodiscard]] const std::string& frame_label(int frame) const { return labels_[frame]; }
+  [[nodiscard]] const std::string& description() const { return description_; }
+  /// Positions of frame i; throws Error naming the frame when they do not fit the topology.
+  [[nodiscard]] Positions frame(int i) const;
+
+ private:
+  TriMesh topology_;
+  std::vector<Body> bodies_;
+  std::vector<std::string> labels_;
+  FrameSource source_;
+  std::string description_;
+};
+
+/// "dir/%03d.ply" with first..last → the file names (printf-style integer pattern, exactly one %d).
+std::vector<std::string> expand_frame_pattern(const std::string& pattern, int first, int last);
+
+/// A sequence read from mesh files (OBJ or PLY), one self-colliding cloth body. The first file defines the
+/// topology; every later file must have the same vertex count and the same faces, else Error names it.
+MeshSequence load_frame_files(const std::vector<std::string>& files, bool self_collision = true);
+
+}  // namespace ccdlab

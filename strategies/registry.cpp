@@ -1,0 +1,89 @@
+#include "strategies/registry.hpp"
+
+#include "strategies/builders/median_builder.hpp"
+#include "strategies/builders/sah_builder.hpp"
+#include "strategies/scenes/drape_fold_scene.hpp"
+#include "strategies/schedulers/sequential_scheduler.hpp"
+#include "strategies/testers/float_tester.hpp"
+
+namespace ccdlab {
+
+const BuilderRegistry& builder_registry() {
+  static const BuilderRegistry r = [] {
+    BuilderRegistry r("hierarchy");
+    r.add({"median", "top-down, median split of centroids on the widest axis (balanced)", {},
+           [](const ParamValues&) -> std::unique_ptr<HierarchyBuilder> { return std::make_unique<MedianBuilder>(); }});
+    r.add({"sah", "top-down binned surface-area heuristic (Wald 2007)",
+           {{"bins", ParamType::integer, 16LL, "bins per axis", 2, 256}},
+           [](const ParamValues& p) -> std::unique_ptr<HierarchyBuilder> {
+             return std::make_unique<SahBuilder>(SahBuilder::Params{int(p.integer("bins"))});
+           }});
+    return r;
+  }();
+  return r;
+}
+
+const SchedulerRegistry& scheduler_registry() {
+  static const SchedulerRegistry r = [] {
+    SchedulerRegistry r("scheduler");
+    r.add({"sequential", "depth-first BVTT traversal from the root on one thread (ICCD baseline)", {},
+           [](const ParamValues&) -> std::unique_ptr<TraversalScheduler> {
+             return std::make_unique<SequentialScheduler>();
+           }});
+    return r;
+  }();
+  return r;
+}
+
+const TesterRegistry& tester_registry() {
+  static const TesterRegistry r = [] {
+    TesterRegistry r("tester");
+    r.add({"float", "cubic coplanarity roots in double, then a proximity check (not conservative)",
+           {{"thickness", ParamType::real, 0.0, "contact distance eta (scene units)", 0, 1e300}},
+           [](const ParamValues& p) -> std::unique_ptr<PrimitiveTester> {
+             return std::make_unique<FloatTester>(FloatTester::Params{p.real("thickness")});
+           }});
+    return r;
+  }();
+  return r;
+}
+
+const SceneRegistry& scene_registry() {
+  static const SceneRegistry r = [] {
+    SceneRegistry r("scene.builtin");
+    DrapeFoldParams d;
+    r.add({"drape_fold", "kinematic cloth sheet folding onto itself while draped over a moving sphere",
+           {{"resolution", ParamType::integer, (long long)d.resolution, "grid cells per side (2*res^2 triangles)", 1, 4000},
+            {"num_frames", ParamType::integer, (long long)d.frames, "number of frames (steps + 1)", 2, 100000},
+            {"fold_deg", ParamType::real, d.fold_deg, "final fold angle, degrees (0 = no fold)", 0, 360},
+            {"crease", ParamType::real, d.crease, "crease position in material x", -0.99, 0.99},
+            {"crease_radius", ParamType::real, d.crease_radius, "radius of the round crease", 1e-6, 1},
+            {"wrinkle", ParamType::real, d.wrinkle, "wrinkle amplitude (0 = flat)", 0, 1},
+            {"sphere_radius", ParamType::real, d.sphere_radius, "sphere radius (0 = no sphere)", 0, 10},
+            {"sphere_segments", ParamType::integer, (long long)d.sphere_segments, "sphere tessellation", 4, 1024},
+            {"sphere_travel", ParamType::real, d.sphere_travel, "sphere moves from -travel to +travel in x", 0, 10},
+            {"self_collision", ParamType::boolean, d.self_collision, "test the cloth against itself", 0, 0}},
+           [](const ParamValues& p) {
+             DrapeFoldParams d;
+             d.resolution = int(p.integer("resolution"));
+             d.frames = int(p.integer("num_frames"));
+             d.fold_deg = p.real("fold_deg");
+             d.crease = p.real("crease");
+             d.crease_radius = p.real("crease_radius");
+             d.wrinkle = p.real("wrinkle");
+             d.sphere_radius = p.real("sphere_radius");
+             d.sphere_segments = int(p.integer("sphere_segments"));
+             d.sphere_travel = p.real("sphere_travel");
+             d.self_collision = p.boolean("self_collision");
+             return make_drape_fold_scene(d);
+           }});
+    return r;
+  }();
+  return r;
+}
+
+Registries builtin_registries() {
+  return {builder_registry(), scheduler_registry(), tester_registry(), scene_registry()};
+}
+
+}  // namespace ccdlab
