@@ -47,10 +47,16 @@ SceneConfig read_scene(const YamlReader& r, const YAML::Node& node, const std::s
   }
   if (!node["builtin"]) r.error(node, "scene", "a map with 'builtin: NAME' or 'frames: PATTERN'");
   // Built-in scene: its parameters sit beside 'builtin' in the same map.
+  const std::string generator = r.string(node["builtin"], "scene.builtin");
+  if (const auto* entry = reg.scenes.find(generator)) {
+    std::vector<std::string> allowed{"builtin"};
+    for (const auto& p : entry->params) allowed.push_back(p.name);
+    r.check_keys(node, "scene", allowed);
+  }
   YAML::Node as_strategy(YAML::NodeType::Map);
   for (const auto& kv : node) as_strategy[kv.first.as<std::string>() == "builtin" ? "name" : kv.first.as<std::string>()] = kv.second;
   try {
-    scene.generator = r.strategy(as_strategy, "scene", reg.scenes);
+    scene.generator = r.strategy(as_strategy, "scene", reg.scenes, generator);
   } catch (const Error& e) {
     // Name the key as the user wrote it.
     std::string msg = e.what();
@@ -115,12 +121,13 @@ ExperimentConfig load_experiment(const std::string& path, const std::vector<std:
       if (c.k != 6 && c.k != 14 && c.k != 18 && c.k != 26) r.error(root["bv"]["k"], "bv.k", "one of 6, 14, 18, 26");
     }
   }
-  c.hierarchy = root["hierarchy"] ? r.strategy(root["hierarchy"], "hierarchy", reg.builders)
-                                  : StrategyChoice{"median", reg.builders.find("median")->defaults()};
-  c.scheduler = root["scheduler"] ? r.strategy(root["scheduler"], "scheduler", reg.schedulers)
-                                  : StrategyChoice{"sequential", reg.schedulers.find("sequential")->defaults()};
-  c.tester = root["tester"] ? r.strategy(root["tester"], "tester", reg.testers)
-                            : StrategyChoice{"float", reg.testers.find("float")->defaults()};
+  auto strategy = [&](const char* key, const auto& registry, const std::string& default_name) {
+    return root[key] ? r.strategy(root[key], key, registry, default_name)
+                     : StrategyChoice{default_name, registry.find(default_name)->defaults()};
+  };
+  c.hierarchy = strategy("hierarchy", reg.builders, c.hierarchy.name);
+  c.scheduler = strategy("scheduler", reg.schedulers, c.scheduler.name);
+  c.tester = strategy("tester", reg.testers, c.tester.name);
   if (root["threads"]) c.threads = int(r.integer(root["threads"], "threads", 1, 1024));
   c.output.dir = "results/" + c.name;
   if (const YAML::Node o = root["output"]) {

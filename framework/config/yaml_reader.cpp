@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace ccdlab {
 namespace {
@@ -57,8 +58,11 @@ void YamlReader::check_keys(const YAML::Node& map, const std::string& path, cons
     if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
     std::string full = path.empty() ? key : path + "." + key;
     std::string hint;
-    for (const auto& a : allowed)
-      if (edit_distance(key, a) <= std::max<std::size_t>(1, a.size() / 3)) hint = fmt::format(" (did you mean '{}'?)", a);
+    std::size_t best = std::numeric_limits<std::size_t>::max();
+    for (const auto& a : allowed) {
+      std::size_t d = edit_distance(key, a);
+      if (d < best && d <= std::max<std::size_t>(1, a.size() / 3)) best = d, hint = fmt::format(" (did you mean '{}'?)", a);
+    }
     fail("{}: {}: unknown key{}; valid keys are: {}", where(kv.first, full), full, hint, fmt::join(allowed, ", "));
   }
 }

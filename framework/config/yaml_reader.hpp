@@ -31,16 +31,19 @@ class YamlReader {
   [[nodiscard]] std::string string(const YAML::Node& node, const std::string& path) const;
 
   /// A strategy given as a name or as a map {name: …, param: …}, validated against its registry entry.
+  /// A map without 'name' means `default_name` (so `--set tester.thickness=…` works on the default tester).
   template <class Product>
-  StrategyChoice strategy(const YAML::Node& node, const std::string& path, const Registry<Product>& registry) const {
+  StrategyChoice strategy(const YAML::Node& node, const std::string& path, const Registry<Product>& registry,
+                          const std::string& default_name) const {
     std::string name;
     if (node.IsMap()) {
-      if (!node["name"]) error(node, path, fmt::format("a map with key 'name' (one of: {})", fmt::join(registry.names(), ", ")));
-      name = string(node["name"], path + ".name");
+      name = node["name"] ? string(node["name"], path + ".name") : default_name;
     } else {
       name = string(node, path);
     }
     const auto* entry = registry.find(name);
+    if (!entry && node.IsMap() && !node["name"])
+      error(node, path, fmt::format("a map with key 'name' (one of: {})", fmt::join(registry.names(), ", ")));
     if (!entry)
       error(node.IsMap() ? node["name"] : node, node.IsMap() ? path + ".name" : path,
             fmt::format("one of {}", fmt::join(registry.names(), ", ")));

@@ -206,7 +206,8 @@ class AsciiCursor {
   AsciiCursor(const std::string& data, std::size_t pos, std::size_t line, std::string path)
       : data_(data), pos_(pos), line_(line), path_(std::move(path)) {}
 
-  double read(const std::string& element, std::size_t index, const std::string& property) {
+  /// Reads one value; a value of a float property is rounded to float, as the header declares.
+  double read(PlyType type, const std::string& element, std::size_t index, const std::string& property) {
     while (tok_i_ >= tokens_.size()) {
       if (pos_ >= data_.size())
         fail("{}:{}: element {} {}: file truncated, property {} missing", path_, line_, element, index, property);
@@ -218,7 +219,8 @@ class AsciiCursor {
       ++line_;
     }
     std::string where = fmt::format("{}:{}: element {} {}", path_, line_, element, index);
-    return parse_double(where, tokens_[tok_i_++], property.c_str());
+    double v = parse_double(where, tokens_[tok_i_++], property.c_str());
+    return type == PlyType::f32 ? double(float(v)) : v;
   }
   [[nodiscard]] std::size_t line() const { return line_; }
 
@@ -312,7 +314,7 @@ MeshData read_ply(const std::string& path) {
       std::size_t line_of_item = txt.line() + 1;
       for (std::size_t i = 0; i < el.properties.size(); ++i) {
         const auto& p = el.properties[i];
-        auto read = [&](PlyType t) { return ascii ? txt.read(el.name, k, p.name) : bin.read(t, el.name, k); };
+        auto read = [&](PlyType t) { return ascii ? txt.read(t, el.name, k, p.name) : bin.read(t, el.name, k); };
         if (p.is_list) {
           double n = read(p.count_type);
           if (is_face && int(i) == face_list) poly.clear();

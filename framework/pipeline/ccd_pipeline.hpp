@@ -43,6 +43,8 @@ class CcdPipeline {
   [[nodiscard]] const PipelineStrategies& strategies() const { return strategies_; }
   /// The swept BV of every face in the last step (index = face id).
   [[nodiscard]] const AnyBvs& face_bvs() const { return face_bvs_; }
+  /// Candidate face pairs of the last step (unsorted) and their BV test count.
+  [[nodiscard]] const TraversalOutput& last_candidates() const { return candidates_; }
   /// BVH of body b (empty before the first step).
   [[nodiscard]] const BvhTopology& bvh(int body) const { return bodies_[body].bvh; }
   /// Bytes of the pipeline's persistent data (topology, ownership, orphans, BVHs).

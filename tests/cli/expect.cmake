@@ -1,0 +1,12 @@
+# Runs EXE with ARGS (a ;-list) in WORKDIR; passes when the exit code is EXPECT_RC and stdout+stderr match REGEX.
+file(MAKE_DIRECTORY ${WORKDIR})
+execute_process(COMMAND ${EXE} ${ARGS} WORKING_DIRECTORY ${WORKDIR} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+set(all "${out}${err}")
+if(NOT rc EQUAL EXPECT_RC)
+  message(FATAL_ERROR "exit code ${rc}, expected ${EXPECT_RC}\n--- output ---\n${all}")
+endif()
+string(REGEX REPLACE "\n" " " flat "${all}")
+if(NOT flat MATCHES "${REGEX}")
+  message(FATAL_ERROR "output does not match '${REGEX}'\n--- output ---\n${all}")
+endif()
+message(STATUS "ok: exit ${rc}\n${all}")

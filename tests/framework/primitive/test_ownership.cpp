@@ -1,0 +1,124 @@
+// The ownership rule and the orphan set: every vertex–face and edge–edge feature pair is tested at most once,
+// and every pair brute force finds colliding is tested.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <set>
+
+#include "framework/pipeline/brute_force.hpp"
+#include "framework/pipeline/ccd_pipeline.hpp"
+#include "strategies/registry.hpp"
+#include "support/test_meshes.hpp"
+
+namespace ccdlab {
+namespace {
+
+PipelineStrategies default_strategies(int k) {
+  PipelineStrategies s;
+  s.k = k;
+  s.builder = builder_registry().make({"median", {}});
+  s.scheduler = scheduler_registry().make({"sequential", {}});
+  s.tester = tester_registry().make({"float", tester_registry().find("float")->defaults()});
+  return s;
+}
+
+TEST(Ownership, EveryFeatureHasOneIncidentOwner) {
+  MeshData g = test::grid(7, 5);
+  TriMesh mesh(Index(g.positions.size()), g.faces);
+  Ownership own = assign_owners(mesh);
+  std::vector<int> owned_features(mesh.num_faces(), 0);
+  for (Index v = 0; v < mesh.num_vertices(); ++v) {
+    Index f = own.vertex_owner[v];
+    ASSERT_TRUE(contains_vertex(mesh.face(f), v));
+    ++owned_features[f];
+  }
+  for (Index e = 0; e < mesh.num_edges(); ++e) {
+    auto faces = mesh.edge_faces(e);
+    ASSERT_NE(std::find(faces.begin(), faces.end(), own.edge_owner[e]), faces.end());
+    ++owned_features[own.edge_owner[e]];
+  }
+  int mask_bits = 0;
+  for (auto m : own.owned_mask) mask_bits += __builtin_popcount(m);
+  EXPECT_EQ(mask_bits, mesh.num_vertices() + mesh.num_edges());
+  // Balanced: V + E = 48 + 117 features over 70 faces (2.4 each); the greedy rule keeps every face at <= 4.
+  EXPECT_LE(*std::max_element(owned_features.begin(), owned_features.end()), 4);
+}
+
+TEST(Ownership, FeaturePairsAreTestedExactlyOnceAndNoneIsLost) {
+  MeshData g = test::grid(8, 8);
+  TriMesh mesh(Index(g.positions.size()), g.faces);
+  for (int k : {6, 18}) {
+    CcdPipeline pipeline(mesh, single_cloth_body(mesh), default_strategies(k));
+    pipeline.set_record_tested_pairs(true);
+    std::mt19937 rng(5 + k);
+    Positions x0 = test::crumple(g.positions, rng, 0.02), x1 = x0;
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (Vec3& p : x1) p += 0.12 * Vec3(u(rng), u(rng), u(rng));
+    StepResult r = pipeline.step(x0, x1);
+
+    auto vf = r.tested_vf;
+    auto ee = r.tested_ee;
+    std::sort(vf.begin(), vf.end());
+    std::sort(ee.begin(), ee.end());
+    EXPECT_EQ(std::adjacent_find(vf.begin(), vf.end()), vf.end()) << "a VF pair was tested twice";
+    EXPECT_EQ(std::adjacent_find(ee.begin(), ee.end()), ee.end()) << "an EE pair was tested twice";
+    for (const auto& p : vf) ASSERT_FALSE(contains_vertex(mesh.face(p.f), p.v));
+    for (const auto& p : ee) ASSERT_FALSE(shares_vertex(mesh.edge(p.a), mesh.edge(p.b)));
+
+    // Exactly the pairs the rule promises: orphans, plus the owned features of every candidate face pair.
+    const Ownership& own = pipeline.owners();
+    std::set<std::pair<Index, Index>> candidates;
+    for (const FacePair& p : pipeline.last_candidates().pairs) candidates.insert({p.a, p.b});
+    auto is_candidate = [&](Index f, Index g2) { return candidates.count({std::min(f, g2), std::max(f, g2)}) > 0; };
+    std::size_t expected_vf = 0, expected_ee = 0;
+    for (Index v = 0; v < mesh.num_vertices(); ++v)
+      for (Index f = 0; f < mesh.num_faces(); ++f) {
+        if (contains_vertex(mesh.face(f), v)) continue;
+        bool orphan = mesh.faces_adjacent(own.vertex_owner[v], f);
+        bool expect = orphan || is_candidate(own.vertex_owner[v], f);
+        expected_vf += expect;
+        ASSERT_EQ(std::binary_search(vf.begin(), vf.end(), VertexFacePair{v, f}), expect) << "v " << v << " f " << f;
+      }
+    for (Index a = 0; a < mesh.num_edges(); ++a)
+      for (Index b = a + 1; b < mesh.num_edges(); ++b) {
+        if (shares_vertex(mesh.edge(a), mesh.edge(b))) continue;
+        Index oa = own.edge_owner[a], ob = own.edge_owner[b];
+        bool expect = mesh.faces_adjacent(oa, ob) || is_candidate(oa, ob);
+        expected_ee += expect;
+        ASSERT_EQ(std::binary_search(ee.begin(), ee.end(), EdgeEdgePair{a, b}), expect) << "a " << a << " b " << b;
+      }
+    EXPECT_EQ(vf.size(), expected_vf);
+    EXPECT_EQ(ee.size(), expected_ee);
+
+    // And every colliding pair of brute force is among them.
+    auto truth = brute_force_contacts(mesh, pipeline.rules(), x0, x1, *pipeline.strategies().tester);
+    ASSERT_GT(truth.size(), 5u);
+    for (const Contact& c : truth) {
+      if (c.kind == ContactKind::vf)
+        EXPECT_TRUE(std::binary_search(vf.begin(), vf.end(), VertexFacePair{c.feature_a, c.feature_b}));
+      else
+        EXPECT_TRUE(std::binary_search(ee.begin(), ee.end(), EdgeEdgePair{c.feature_a, c.feature_b}));
+    }
+  }
+}
+
+TEST(OrphanSet, CoversExactlyThePairsOfAdjacentOwners) {
+  MeshData g = test::grid(5, 5);
+  TriMesh mesh(Index(g.positions.size()), g.faces);
+  Ownership own = assign_owners(mesh);
+  OrphanSet orphans = build_orphan_set(mesh, own, [](Index) { return true; });
+  std::set<VertexFacePair> vf(orphans.vf.begin(), orphans.vf.end());
+  std::set<EdgeEdgePair> ee(orphans.ee.begin(), orphans.ee.end());
+  EXPECT_EQ(vf.size(), orphans.vf.size());
+  EXPECT_EQ(ee.size(), orphans.ee.size());
+  for (Index v = 0; v < mesh.num_vertices(); ++v)
+    for (Index f = 0; f < mesh.num_faces(); ++f)
+      if (!contains_vertex(mesh.face(f), v))
+        EXPECT_EQ(vf.count({v, f}) > 0, mesh.faces_adjacent(own.vertex_owner[v], f));
+  // No self-collision: no orphans.
+  OrphanSet none = build_orphan_set(mesh, own, [](Index) { return false; });
+  EXPECT_TRUE(none.vf.empty() && none.ee.empty());
+}
+
+}  // namespace
+}  // namespace ccdlab
