@@ -13,10 +13,12 @@
 // rounded OUTWARD from a double computation that is itself padded by its worst-case rounding error, so a
 // float k-DOP always contains the exact k-DOP of its points: culling stays conservative.
 #include <array>
+#include <bit>
 #include <cmath>
 #include <concepts>
 #include <cstdint>
 #include <limits>
+#include <utility>
 
 #include "framework/geometry/vec.hpp"
 
@@ -65,15 +67,22 @@ struct KDopAxes<26> {
 };
 
 namespace detail {
+/// The next float towards −∞ / +∞ (f finite), by stepping the bit pattern (no libm call in the hot loop).
+inline float float_below(float f) {
+  if (f == 0) return -std::numeric_limits<float>::denorm_min();
+  auto bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0 ? bits - 1 : bits + 1);
+}
+inline float float_above(float f) { return -float_below(-f); }
 /// Largest float <= x (x finite).
 inline float round_down(double x) {
   auto f = static_cast<float>(x);
-  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+  return static_cast<double>(f) > x ? float_below(f) : f;
 }
 /// Smallest float >= x (x finite).
 inline float round_up(double x) {
   auto f = static_cast<float>(x);
-  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+  return static_cast<double>(f) < x ? float_above(f) : f;
 }
 }  // namespace detail
 
@@ -107,18 +116,22 @@ class KDop {
   template <std::size_t N>
   void grow(const std::array<const Vec3*, N>& pts) {
     double mag = 0;
-    for (const Vec3* p : pts) mag = std::max(mag, std::abs(p->x()) + std::abs(p->y()) + std::abs(p->z()));
+    std::array<double, num_axes> lo, hi;
+    lo.fill(std::numeric_limits<double>::infinity());
+    hi.fill(-std::numeric_limits<double>::infinity());
+    for (const Vec3* p : pts) {
+      mag = std::max(mag, std::abs(p->x()) + std::abs(p->y()) + std::abs(p->z()));
+      std::array<double, num_axes> s;
+      project(*p, s, std::make_index_sequence<num_axes>{});
+      for (int i = 0; i < num_axes; ++i) {
+        lo[i] = std::min(lo[i], s[i]);
+        hi[i] = std::max(hi[i], s[i]);
+      }
+    }
     const double err = 4.440892098500626e-16 * mag;  // see grow(p)
     for (int i = 0; i < num_axes; ++i) {
-      const auto& d = axes[i];
-      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (const Vec3* p : pts) {
-        double s = d[0] * p->x() + d[1] * p->y() + d[2] * p->z();
-        lo = std::min(lo, s);
-        hi = std::max(hi, s);
-      }
-      min_[i] = std::min(min_[i], detail::round_down(lo - err));
-      max_[i] = std::max(max_[i], detail::round_up(hi + err));
+      min_[i] = std::min(min_[i], detail::round_down(lo[i] - err));
+      max_[i] = std::max(max_[i], detail::round_up(hi[i] + err));
     }
   }
   void merge(const KDop& o) {
@@ -162,6 +175,12 @@ class KDop {
   [[nodiscard]] float max(int i) const { return max_[i]; }
 
  private:
+  /// d_i · p for every axis, unrolled with the axis entries as constants (0 and ±1 fold away).
+  template <std::size_t... I>
+  static void project(const Vec3& p, std::array<double, num_axes>& out, std::index_sequence<I...>) {
+    ((out[I] = double(axes[I][0]) * p.x() + double(axes[I][1]) * p.y() + double(axes[I][2]) * p.z()), ...);
+  }
+
   std::array<float, num_axes> min_;
   std::array<float, num_axes> max_;
 };

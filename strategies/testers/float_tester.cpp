@@ -60,18 +60,22 @@ double extent(const std::array<const Vec3*, N>& pts) {
 /// of t where f touches zero at a critical point. f is evaluated from the positions at t (not from the
 /// expanded coefficients), which is more accurate near the roots.
 template <class F>
-void coplanarity_times(const Moving& A, const Moving& B, const Moving& C, F&& f, double f_scale,
+void coplanarity_times(const Moving& A, const Moving& B, const Moving& C, F&& f, double f_scale, bool thick,
                        TimeList& times, bool& degenerate) {
   const Vec3 &A0 = A.x0, &dA = A.dx, &B0 = B.x0, &dB = B.dx, &C0 = C.x0, &dC = C.dx;
   const double d = A0.dot(B0.cross(C0));
   const double c = dA.dot(B0.cross(C0)) + A0.dot(dB.cross(C0)) + A0.dot(B0.cross(dC));
   const double b = dA.dot(dB.cross(C0)) + dA.dot(B0.cross(dC)) + A0.dot(dB.cross(dC));
   const double a = dA.dot(dB.cross(dC));
-  const double zero = 1e-12 * f_scale;
-  degenerate = std::max({std::abs(a), std::abs(b), std::abs(c), std::abs(d)}) <= zero;
-  times.push_back(0);
-  times.push_back(1);
+  degenerate = std::max({std::abs(a), std::abs(b), std::abs(c), std::abs(d)}) <= 1e-12 * f_scale;
+  // With thickness, contact needs no coplanarity: the ends of the step are always candidates. Without it, they
+  // are candidates only when (nearly) coplanar, which the breakpoint check below finds.
+  if (thick || degenerate) {
+    times.push_back(0);
+    times.push_back(1);
+  }
   if (degenerate) return;
+  const double zero = FloatTester::rel_tolerance * f_scale;  // |f| ≈ distance × area: within the tolerance
   TimeList breaks;
   breaks.push_back(0);
   breaks.push_back(1);
@@ -144,7 +148,7 @@ CcdHit FloatTester::vertex_face(const VertexFaceQuery& q) const {
   auto f = [&](double t) { return A.at(t).dot(B.at(t).cross(C.at(t))); };
   TimeList times;
   bool degenerate = false;
-  coplanarity_times(A, B, C, f, L * L * L, times, degenerate);
+  coplanarity_times(A, B, C, f, L * L * L, params_.thickness > 0, times, degenerate);
   if (degenerate) {
     for (double t : {0.0, 1.0}) {
       Vec3 n = plane_normal({v.at(t), f0.at(t), f1.at(t), f2.at(t)});
@@ -172,7 +176,7 @@ CcdHit FloatTester::edge_edge(const EdgeEdgeQuery& q) const {
   auto f = [&](double t) { return A.at(t).dot(B.at(t).cross(C.at(t))); };
   TimeList times;
   bool degenerate = false;
-  coplanarity_times(A, B, C, f, L * L * L, times, degenerate);
+  coplanarity_times(A, B, C, f, L * L * L, params_.thickness > 0, times, degenerate);
   if (degenerate) {
     for (double t : {0.0, 1.0}) {
       Vec3 n = plane_normal({a0.at(t), a1.at(t), b0.at(t), b1.at(t)});

@@ -1,0 +1,61 @@
+"""Reading ccdlab result folders (written by `ccdlab run`).
+
+A result folder holds:
+  steps.csv     one row per CCD step: counters, per-phase milliseconds, contact-set hash, config columns
+  steps.jsonl   {"type": "config", ...}, then one {"type": "step", ...} per step, then {"type": "summary", ...}
+  config.yaml   the resolved experiment config
+"""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import pandas as pd
+
+PHASES = ["build_ms", "swept_bv_ms", "refit_ms", "traverse_ms", "narrow_ms", "orphan_ms"]
+REQUIRED_COLUMNS = ["step", "bv_tests", "candidate_pairs", "vf_tests", "ee_tests", "contacts_vf", "contacts_ee",
+                    "total_ms", *PHASES]
+
+
+class ResultError(Exception):
+    """A result folder that is missing, incomplete or malformed; the message names the file."""
+
+
+@dataclass
+class Run:
+    folder: Path
+    steps: pd.DataFrame
+    config: dict
+    summary: dict | None
+
+
+def load_run(folder: str | Path) -> Run:
+    folder = Path(folder)
+    csv = folder / "steps.csv"
+    if not csv.is_file():
+        raise ResultError(f"{csv}: not found (run `ccdlab run CONFIG.yaml` first)")
+    try:
+        steps = pd.read_csv(csv)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError) as e:
+        raise ResultError(f"{csv}: not a valid CSV: {e}") from e
+    missing = [c for c in REQUIRED_COLUMNS if c not in steps.columns]
+    if missing:
+        raise ResultError(f"{csv}: missing columns {', '.join(missing)}")
+    if steps.empty:
+        raise ResultError(f"{csv}: no steps")
+    config, summary = {}, None
+    jsonl = folder / "steps.jsonl"
+    if jsonl.is_file():
+        for number, line in enumerate(jsonl.read_text().splitlines(), start=1):
+            if not line.strip():
+                continue
+            try:
+                record = json.loads(line)
+            except json.JSONDecodeError as e:
+                raise ResultError(f"{jsonl}:{number}: invalid JSON: {e.msg}") from e
+            if record.get("type") == "config":
+                config = record
+            elif record.get("type") == "summary":
+                summary = record
+    return Run(folder, steps, config, summary)
