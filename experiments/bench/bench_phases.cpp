@@ -1,0 +1,102 @@
+// Micro-benchmarks of the sequential pipeline's phases, per K, on one step of the built-in drape_fold scene
+// (the step with the most candidates of the default run). Run: build/bin/ccdlab_microbench
+//   --benchmark_filter=Traverse   (or SweptBv, Refit, Step, FloatTester)
+// Google Benchmark interleaves nothing by itself: compare ratios within one invocation.
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "framework/traversal/bvtt.hpp"
+#include "strategies/registry.hpp"
+#include "strategies/scenes/drape_fold_scene.hpp"
+#include "strategies/testers/float_tester.hpp"
+
+namespace ccdlab {
+namespace {
+
+struct Fixture {
+  MeshSequence scene = make_drape_fold_scene(DrapeFoldParams{});
+  Positions x0 = scene.frame(12), x1 = scene.frame(13);
+};
+const Fixture& fixture() {
+  static const Fixture f;
+  return f;
+}
+
+std::unique_ptr<CcdPipeline> make_pipeline(int k) {
+  PipelineStrategies s;
+  s.k = k;
+  s.builder = builder_registry().make({"median", {}});
+  s.scheduler = scheduler_registry().make({"sequential", {}});
+  s.tester = tester_registry().make({"float", tester_registry().find("float")->defaults()});
+  const Fixture& f = fixture();
+  return std::make_unique<CcdPipeline>(f.scene.topology(), f.scene.bodies(), std::move(s));
+}
+
+void BM_Step(benchmark::State& state) {
+  auto p = make_pipeline(int(state.range(0)));
+  const Fixture& f = fixture();
+  StepResult r;
+  for (auto _ : state) benchmark::DoNotOptimize(r = p->step(f.x0, f.x1));
+  state.counters["bv_tests"] = double(r.counters.bv_tests);
+  state.counters["elementary_tests"] = double(r.counters.vf_tests + r.counters.ee_tests);
+  state.counters["contacts"] = double(r.contacts.size());
+}
+BENCHMARK(BM_Step)->Arg(6)->Arg(14)->Arg(18)->Arg(26)->Unit(benchmark::kMillisecond);
+
+void BM_SweptBv(benchmark::State& state) {
+  const Fixture& f = fixture();
+  AnyBvs bvs = make_bvs(int(state.range(0)));
+  for (auto _ : state) {
+    compute_face_bvs(f.scene.topology(), f.x0, f.x1, 0.0, bvs);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * f.scene.topology().num_faces());
+}
+BENCHMARK(BM_SweptBv)->Arg(6)->Arg(14)->Arg(18)->Arg(26)->Unit(benchmark::kMillisecond);
+
+void BM_Traverse(benchmark::State& state) {
+  auto p = make_pipeline(int(state.range(0)));
+  const Fixture& f = fixture();
+  (void)p->step(f.x0, f.x1);  // builds and refits
+  auto scheduler = scheduler_registry().make({"sequential", {}});
+  const BvhTopology& bvh = p->bvh(0);
+  AnyBvs node_bvs = make_bvs(int(state.range(0)));
+  std::visit(
+      [&](auto& nb) {
+        using Vec = std::decay_t<decltype(nb)>;
+        const Vec& leaf = std::get<Vec>(p->face_bvs());
+        refit(bvh, nb, [&](Index face) { return leaf[face]; });
+      },
+      node_bvs);
+  TraversalPass pass{0, &p->mesh(), &bvh, &node_bvs, &bvh, &node_bvs, true};
+  TraversalOutput out;
+  for (auto _ : state) {
+    out.clear();
+    scheduler->collect(pass, out);
+  }
+  state.counters["bv_tests"] = double(out.bv_tests);
+  state.counters["candidates"] = double(out.pairs.size());
+  state.counters["ns_per_bv_test"] = benchmark::Counter(double(out.bv_tests) * double(state.iterations()),
+                                                        benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_Traverse)->Arg(6)->Arg(14)->Arg(18)->Arg(26)->Unit(benchmark::kMillisecond);
+
+void BM_FloatTesterEdgeEdge(benchmark::State& state) {
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<EdgeEdgeQuery> queries(4096);
+  for (auto& q : queries)
+    for (Vec3* p : {&q.ea0_t0, &q.ea1_t0, &q.eb0_t0, &q.eb1_t0, &q.ea0_t1, &q.ea1_t1, &q.eb0_t1, &q.eb1_t1})
+      *p = Vec3(u(rng), u(rng), u(rng));
+  FloatTester t;
+  std::size_t i = 0, hits = 0;
+  for (auto _ : state) hits += t.edge_edge(queries[i++ & 4095]).hit;
+  state.counters["hit_rate"] = double(hits) / double(state.iterations());
+}
+BENCHMARK(BM_FloatTesterEdgeEdge);
+
+}  // namespace
+}  // namespace ccdlab
+
+BENCHMARK_MAIN();
