@@ -10,7 +10,7 @@ import plot_run  # noqa: E402
 from ccdlab_results import ResultError, load_run  # noqa: E402
 
 HEADER = ("step,frame_t0,frame_t1,bv_tests,candidate_pairs,vf_pairs,ee_pairs,orphan_vf,orphan_ee,vf_tests,ee_tests,"
-          "contacts_vf,contacts_ee,build_ms,swept_bv_ms,refit_ms,traverse_ms,narrow_ms,orphan_ms,total_ms,hash,"
+          "orphan_tests,contacts_vf,contacts_ee,build_ms,swept_bv_ms,refit_ms,traverse_ms,narrow_ms,orphan_ms,total_ms,hash,"
           "experiment,scheduler,threads,k,tester,git_revision")
 
 
@@ -18,7 +18,7 @@ def make_run(folder: Path, steps: int = 3) -> Path:
     folder.mkdir(parents=True, exist_ok=True)
     rows = [HEADER]
     for s in range(steps):
-        rows.append(f"{s},{s},{s + 1},1000,{100 + s},50,60,5,6,40,50,{s},{2 * s},{1.5 if s == 0 else 0},"
+        rows.append(f"{s},{s},{s + 1},1000,{100 + s},50,60,5,6,40,50,3,{s},{2 * s},{1.5 if s == 0 else 0},"
                     f"0.5,0.1,2.0,3.0,1.0,{7.6 + s},00000000deadbeef,t,sequential,1,18,float,abc")
     (folder / "steps.csv").write_text("\n".join(rows) + "\n")
     config = {"type": "config", "config": {"name": "t", "bv": {"k": 18}, "scheduler": {"name": "sequential"},

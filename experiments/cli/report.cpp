@@ -18,7 +18,8 @@ nlohmann::json step_json(const StepResult& r) {
             {"orphan_vf", c.orphan_vf},
             {"orphan_ee", c.orphan_ee},
             {"vf_tests", c.vf_tests},
-            {"ee_tests", c.ee_tests}}},
+            {"ee_tests", c.ee_tests},
+            {"orphan_tests", c.orphan_tests}}},
           {"ms",
            {{"total", t.total_ms},
             {"build", t.build_ms},
@@ -30,16 +31,16 @@ nlohmann::json step_json(const StepResult& r) {
 }
 
 std::string csv_header() {
-  return "bv_tests,candidate_pairs,vf_pairs,ee_pairs,orphan_vf,orphan_ee,vf_tests,ee_tests,contacts_vf,contacts_ee,"
+  return "bv_tests,candidate_pairs,vf_pairs,ee_pairs,orphan_vf,orphan_ee,vf_tests,ee_tests,orphan_tests,contacts_vf,contacts_ee,"
          "build_ms,swept_bv_ms,refit_ms,traverse_ms,narrow_ms,orphan_ms,total_ms,hash";
 }
 
 std::string csv_row(const StepResult& r, std::uint64_t step_hash) {
   const StepCounters& c = r.counters;
   const StepTimings& t = r.timings;
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:016x}", c.bv_tests,
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:016x}", c.bv_tests,
                      c.candidate_pairs, c.vf_pairs, c.ee_pairs, c.orphan_vf, c.orphan_ee, c.vf_tests, c.ee_tests,
-                     c.contacts_vf, c.contacts_ee, t.build_ms, t.swept_bv_ms, t.refit_ms, t.traverse_ms, t.narrow_ms,
+                     c.orphan_tests, c.contacts_vf, c.contacts_ee, t.build_ms, t.swept_bv_ms, t.refit_ms, t.traverse_ms, t.narrow_ms,
                      t.orphan_ms, t.total_ms, step_hash);
 }
 

@@ -120,11 +120,12 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   tm.narrow_ms = ms_since(t);
 
   t = Clock::now();
-  const std::uint64_t vf_before = c.vf_pairs, ee_before = c.ee_pairs;
+  const std::uint64_t vf_before = c.vf_pairs, ee_before = c.ee_pairs, tests_before = c.vf_tests + c.ee_tests;
   for (const VertexFacePair& p : orphans_.vf) narrow_.test_vf(p.v, p.f, result.contacts, c);
   for (const EdgeEdgePair& p : orphans_.ee) narrow_.test_ee(p.a, p.b, result.contacts, c);
   c.orphan_vf = c.vf_pairs - vf_before;
   c.orphan_ee = c.ee_pairs - ee_before;
+  c.orphan_tests = c.vf_tests + c.ee_tests - tests_before;
   if (record) {
     record->tested_vf.insert(record->tested_vf.end(), orphans_.vf.begin(), orphans_.vf.end());
     record->tested_ee.insert(record->tested_ee.end(), orphans_.ee.begin(), orphans_.ee.end());
