@@ -3,19 +3,13 @@
 #include <fstream>
 
 #include "framework/util/error.hpp"
+#include "support/error_of.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using test::error_of;
 
 void write_text(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
 

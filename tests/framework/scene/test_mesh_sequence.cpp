@@ -2,19 +2,13 @@
 
 #include "framework/util/error.hpp"
 #include "strategies/scenes/drape_fold_scene.hpp"
+#include "support/error_of.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using test::error_of;
 
 TEST(FramePattern, ExpandsPrintfPatterns) {
   EXPECT_EQ(expand_frame_pattern("d/%03d.ply", 8, 10), (std::vector<std::string>{"d/008.ply", "d/009.ply", "d/010.ply"}));
