@@ -69,11 +69,13 @@ void BM_Traverse(benchmark::State& state) {
         refit(bvh, nb, [&](Index face) { return leaf[face]; });
       },
       node_bvs);
-  TraversalPass pass{0, &p->mesh(), &bvh, &node_bvs, &bvh, &node_bvs, true};
+  TraversalPass pass{0, &p->mesh(), &bvh, &node_bvs, &bvh, &node_bvs, true, 1};
+  std::vector<PhaseTrace> traces;
   TraversalOutput out;
   for (auto _ : state) {
     out.clear();
-    scheduler->collect(pass, out);
+    traces.clear();
+    scheduler->collect(pass, out, traces);
   }
   state.counters["bv_tests"] = double(out.bv_tests);
   state.counters["candidates"] = double(out.pairs.size());

@@ -27,6 +27,7 @@ int step_command(const StepOptions& o) {
   if (o.threads < 1) fail("--threads: expected an integer >= 1, got {}", o.threads);
   PipelineStrategies s;
   s.k = o.k;
+  s.threads = o.threads;
   s.builder = builder_registry().make(choose(builder_registry(), "hierarchy", o.hierarchy));
   s.scheduler = scheduler_registry().make(choose(scheduler_registry(), "scheduler", o.scheduler));
   s.tester = tester_registry().make(choose(tester_registry(), "tester", o.tester));

@@ -174,6 +174,7 @@ MeshSequence make_scene(const ExperimentConfig& c, const Registries& reg) {
 PipelineStrategies make_strategies(const ExperimentConfig& c, const Registries& reg) {
   PipelineStrategies s;
   s.k = c.k;
+  s.threads = c.threads;
   s.builder = reg.builders.make(c.hierarchy);
   s.scheduler = reg.schedulers.make(c.scheduler);
   s.tester = reg.testers.make(c.tester);

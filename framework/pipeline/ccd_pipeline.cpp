@@ -8,7 +8,11 @@ namespace ccdlab {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+double ms_since(Clock::time_point t) { return ms_between(t, Clock::now()); }
+
+/// Chunk sizes of the parallel phases: large enough to amortise scheduling, small enough to balance.
+constexpr std::size_t kCandidateChunk = 256;
+constexpr std::size_t kOrphanChunk = 4096;
 
 }  // namespace
 
@@ -22,11 +26,13 @@ AnyBvs make_bvs(int k) {
   fail("bv.k: expected one of 6, 14, 18, 26, got {}", k);
 }
 
-void compute_face_bvs(const TriMesh& mesh, const Positions& x0, const Positions& x1, double thickness, AnyBvs& out) {
+void compute_face_bvs(const TriMesh& mesh, const Positions& x0, const Positions& x1, double thickness, AnyBvs& out,
+                      int threads) {
   std::visit(
       [&](auto& bvs) {
         using BV = typename std::decay_t<decltype(bvs)>::value_type;
         bvs.resize(mesh.num_faces());
+#pragma omp parallel for schedule(static) num_threads(threads)
         for (Index f = 0; f < mesh.num_faces(); ++f) {
           const Face& t = mesh.face(f);
           bvs[f] = swept_triangle_bv<BV>(x0[t[0]], x0[t[1]], x0[t[2]], x1[t[0]], x1[t[1]], x1[t[2]], thickness);
@@ -42,6 +48,7 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
       owners_(assign_owners(mesh)),
       narrow_(mesh_, owners_, *strategies_.tester),
       face_bvs_(make_bvs(strategies_.k)) {
+  if (strategies_.threads < 1) fail("threads: expected an integer >= 1, got {}", strategies_.threads);
   orphans_ = build_orphan_set(mesh_, owners_, [this](Index f) {
     int b = rules_.body_of_face(f);
     return rules_.bodies_interact(b, b);
@@ -53,15 +60,16 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
     bodies_[b].node_bvs = make_bvs(strategies_.k);
   }
   // Passes: self passes first, then body pairs; ids are stable for the pipeline's lifetime.
+  const int threads = strategies_.threads;
   for (int i = 0; i < int(bl.size()); ++i)
     if (rules_.bodies_interact(i, i) && !bodies_[i].faces.empty())
       passes_.push_back({int(passes_.size()), &mesh_, &bodies_[i].bvh, &bodies_[i].node_bvs, &bodies_[i].bvh,
-                         &bodies_[i].node_bvs, true});
+                         &bodies_[i].node_bvs, true, threads});
   for (int i = 0; i < int(bl.size()); ++i)
     for (int j = i + 1; j < int(bl.size()); ++j)
       if (rules_.bodies_interact(i, j) && !bodies_[i].faces.empty() && !bodies_[j].faces.empty())
         passes_.push_back({int(passes_.size()), &mesh_, &bodies_[i].bvh, &bodies_[i].node_bvs, &bodies_[j].bvh,
-                           &bodies_[j].node_bvs, false});
+                           &bodies_[j].node_bvs, false, threads});
 }
 
 CcdPipeline::~CcdPipeline() = default;
@@ -75,13 +83,100 @@ void CcdPipeline::build_hierarchies(const Positions& x_t0, const Positions& x_t1
         boxes[i].grow(x_t1[v]);
       }
     body.bvh = strategies_.builder->build(body.faces, boxes);
+    // Cut the tree into ≥ 8·threads disjoint sub-trees (level by level) for the parallel refit.
+    body.refit_subtrees.clear();
+    body.refit_top.clear();
+    if (body.bvh.nodes.empty()) continue;
+    std::vector<Index> level{0};
+    const std::size_t want = strategies_.threads > 1 ? 8 * std::size_t(strategies_.threads) : 1;
+    while (level.size() < want) {
+      std::vector<Index> next;
+      for (Index n : level) {
+        const BvhNode& node = body.bvh.nodes[n];
+        if (node.is_leaf()) {
+          next.push_back(n);
+        } else {
+          body.refit_top.push_back(n);
+          next.push_back(node.left);
+          next.push_back(node.right);
+        }
+      }
+      if (next.size() == level.size()) break;  // all leaves
+      level = std::move(next);
+    }
+    body.refit_subtrees = std::move(level);
+    std::sort(body.refit_top.rbegin(), body.refit_top.rend());
   }
   built_ = true;
+}
+
+void CcdPipeline::refit_body(BodyState& body, PhaseTrace& trace) {
+  std::visit(
+      [&](auto& node_bvs) {
+        using Vec = std::decay_t<decltype(node_bvs)>;
+        const Vec& leaf = std::get<Vec>(face_bvs_);
+        const BvhTopology& bvh = body.bvh;
+        node_bvs.resize(bvh.nodes.size());
+        auto refit_node = [&](Index i) {
+          const BvhNode& n = bvh.nodes[i];
+          if (n.is_leaf()) {
+            node_bvs[i] = leaf[n.face];
+          } else {
+            node_bvs[i] = node_bvs[n.left];
+            node_bvs[i].merge(node_bvs[n.right]);
+          }
+        };
+        // A sub-tree rooted at r is the pre-order range [r, r + 2·leaves(r) − 1): sweep it backwards.
+        parallel_chunks(body.refit_subtrees.size(), 1, strategies_.threads, trace, [&](std::size_t b, std::size_t e, int) {
+          for (std::size_t s = b; s < e; ++s) {
+            const Index r = body.refit_subtrees[s];
+            for (Index i = r + 2 * bvh.leaf_count[r] - 2; i >= r; --i) refit_node(i);
+          }
+        });
+        const auto t0 = Clock::now();
+        for (Index i : body.refit_top) refit_node(i);
+        trace.serial_ms += ms_since(t0);
+      },
+      body.node_bvs);
+}
+
+template <class Pairs, class TestOne>
+void CcdPipeline::test_in_parallel(const Pairs& pairs, std::size_t chunk, const char* phase, StepResult& result,
+                                   TestOne&& test_one) {
+  const int threads = strategies_.threads;
+  std::vector<std::vector<Contact>> contacts(threads);
+  std::vector<StepCounters> counters(threads);
+  std::vector<StepResult> records(record_tested_ ? threads : 0);
+  PhaseTrace trace{phase, Distribution::dynamic, 0, {}, {}};
+  parallel_chunks(pairs.size(), chunk, threads, trace, [&](std::size_t b, std::size_t e, int tid) {
+    StepResult* record = record_tested_ ? &records[tid] : nullptr;
+    for (std::size_t i = b; i < e; ++i) test_one(pairs[i], contacts[tid], counters[tid], record);
+  });
+  // Merge in thread order; the final sort makes the result independent of the schedule.
+  const auto t0 = Clock::now();
+  StepCounters& c = result.counters;
+  for (int t = 0; t < threads; ++t) {
+    result.contacts.insert(result.contacts.end(), contacts[t].begin(), contacts[t].end());
+    const StepCounters& l = counters[t];
+    c.vf_pairs += l.vf_pairs;
+    c.ee_pairs += l.ee_pairs;
+    c.vf_tests += l.vf_tests;
+    c.ee_tests += l.ee_tests;
+    c.contacts_vf += l.contacts_vf;
+    c.contacts_ee += l.contacts_ee;
+    if (record_tested_) {
+      result.tested_vf.insert(result.tested_vf.end(), records[t].tested_vf.begin(), records[t].tested_vf.end());
+      result.tested_ee.insert(result.tested_ee.end(), records[t].tested_ee.begin(), records[t].tested_ee.end());
+    }
+  }
+  trace.serial_ms += ms_since(t0);
+  result.traces.push_back(std::move(trace));
 }
 
 StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   if (Index(x_t0.size()) != mesh_.num_vertices() || Index(x_t1.size()) != mesh_.num_vertices())
     fail("step: frames have {} and {} vertices, the mesh has {}", x_t0.size(), x_t1.size(), mesh_.num_vertices());
+  const int threads = strategies_.threads;
   StepResult result;
   StepCounters& c = result.counters;
   StepTimings& tm = result.timings;
@@ -92,44 +187,52 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   tm.build_ms = ms_since(t);
 
   t = Clock::now();
-  compute_face_bvs(mesh_, x_t0, x_t1, strategies_.tester->thickness(), face_bvs_);
+  compute_face_bvs(mesh_, x_t0, x_t1, strategies_.tester->thickness(), face_bvs_, threads);
   tm.swept_bv_ms = ms_since(t);
+  // Static split into equal parts: recorded as one task per thread of equal cost.
+  result.traces.push_back(PhaseTrace{"swept_bv", Distribution::static_chunks, 0,
+                                     std::vector<double>(threads, tm.swept_bv_ms), {}});
 
   t = Clock::now();
-  for (BodyState& body : bodies_)
-    std::visit(
-        [&](auto& node_bvs) {
-          using Vec = std::decay_t<decltype(node_bvs)>;
-          const Vec& leaf = std::get<Vec>(face_bvs_);
-          refit(body.bvh, node_bvs, [&](Index f) { return leaf[f]; });
-        },
-        body.node_bvs);
+  for (BodyState& body : bodies_) {
+    PhaseTrace trace{"refit", Distribution::dynamic, 0, {}, {}};
+    refit_body(body, trace);
+    result.traces.push_back(std::move(trace));
+  }
   tm.refit_ms = ms_since(t);
 
   t = Clock::now();
   candidates_.clear();
-  for (const TraversalPass& pass : passes_) strategies_.scheduler->collect(pass, candidates_);
+  for (const TraversalPass& pass : passes_) strategies_.scheduler->collect(pass, candidates_, result.traces);
   c.bv_tests = candidates_.bv_tests;
   c.candidate_pairs = candidates_.pairs.size();
+  result.traversal = candidates_.stats;
+  result.traversal.bv_tests = candidates_.bv_tests;
   tm.traverse_ms = ms_since(t);
 
   t = Clock::now();
-  narrow_.begin_step(x_t0, x_t1);
-  StepResult* record = record_tested_ ? &result : nullptr;
-  for (const FacePair& p : candidates_.pairs) narrow_.test_face_pair(p.a, p.b, result.contacts, c, record);
+  narrow_.begin_step(x_t0, x_t1);  // per-step feature boxes (sequential: O(V + E + F), cheap)
+  test_in_parallel(candidates_.pairs, kCandidateChunk, "narrow", result,
+                   [this](const FacePair& p, std::vector<Contact>& out, StepCounters& lc, StepResult* rec) {
+                     narrow_.test_face_pair(p.a, p.b, out, lc, rec);
+                   });
   tm.narrow_ms = ms_since(t);
 
   t = Clock::now();
   const std::uint64_t vf_before = c.vf_pairs, ee_before = c.ee_pairs, tests_before = c.vf_tests + c.ee_tests;
-  for (const VertexFacePair& p : orphans_.vf) narrow_.test_vf(p.v, p.f, result.contacts, c);
-  for (const EdgeEdgePair& p : orphans_.ee) narrow_.test_ee(p.a, p.b, result.contacts, c);
+  test_in_parallel(orphans_.vf, kOrphanChunk, "orphans_vf", result,
+                   [this](const VertexFacePair& p, std::vector<Contact>& out, StepCounters& lc, StepResult* rec) {
+                     narrow_.test_vf(p.v, p.f, out, lc);
+                     if (rec) rec->tested_vf.push_back(p);
+                   });
+  test_in_parallel(orphans_.ee, kOrphanChunk, "orphans_ee", result,
+                   [this](const EdgeEdgePair& p, std::vector<Contact>& out, StepCounters& lc, StepResult* rec) {
+                     narrow_.test_ee(p.a, p.b, out, lc);
+                     if (rec) rec->tested_ee.push_back(p);
+                   });
   c.orphan_vf = c.vf_pairs - vf_before;
   c.orphan_ee = c.ee_pairs - ee_before;
   c.orphan_tests = c.vf_tests + c.ee_tests - tests_before;
-  if (record) {
-    record->tested_vf.insert(record->tested_vf.end(), orphans_.vf.begin(), orphans_.vf.end());
-    record->tested_ee.insert(record->tested_ee.end(), orphans_.ee.begin(), orphans_.ee.end());
-  }
   tm.orphan_ms = ms_since(t);
 
   sort_contacts(result.contacts);

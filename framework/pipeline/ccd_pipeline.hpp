@@ -19,6 +19,7 @@ namespace ccdlab {
 
 struct PipelineStrategies {
   int k = 18;  ///< k-DOP: 6, 14, 18 or 26
+  int threads = 1;  ///< OpenMP threads for every stage
   std::unique_ptr<HierarchyBuilder> builder;
   std::unique_ptr<TraversalScheduler> scheduler;
   std::unique_ptr<PrimitiveTester> tester;
@@ -55,8 +56,15 @@ class CcdPipeline {
     std::vector<Index> faces;
     BvhTopology bvh;
     AnyBvs node_bvs;
+    // Parallel refit: disjoint sub-trees refit in parallel (each a contiguous pre-order range), then the few
+    // nodes above them, bottom-up.
+    std::vector<Index> refit_subtrees;
+    std::vector<Index> refit_top;  ///< in decreasing index order
   };
   void build_hierarchies(const Positions& x_t0, const Positions& x_t1);
+  void refit_body(BodyState& body, PhaseTrace& trace);
+  template <class Pairs, class TestOne>
+  void test_in_parallel(const Pairs& pairs, std::size_t chunk, const char* phase, StepResult& result, TestOne&& test_one);
 
   const TriMesh& mesh_;
   CollisionRules rules_;
@@ -75,7 +83,8 @@ class CcdPipeline {
 /// An AnyBvs holding an empty vector of KDop<k>; throws Error unless k ∈ {6, 14, 18, 26}.
 AnyBvs make_bvs(int k);
 
-/// Swept k-DOP of every face of the mesh over the step (inflated by thickness).
-void compute_face_bvs(const TriMesh& mesh, const Positions& x_t0, const Positions& x_t1, double thickness, AnyBvs& out);
+/// Swept k-DOP of every face of the mesh over the step (inflated by thickness), on `threads` threads.
+void compute_face_bvs(const TriMesh& mesh, const Positions& x_t0, const Positions& x_t1, double thickness, AnyBvs& out,
+                      int threads = 1);
 
 }  // namespace ccdlab

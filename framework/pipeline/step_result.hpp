@@ -5,6 +5,8 @@
 
 #include "framework/primitive/contact.hpp"
 #include "framework/primitive/feature_pairs.hpp"
+#include "framework/traversal/candidates.hpp"
+#include "framework/util/parallel.hpp"
 
 namespace ccdlab {
 
@@ -37,6 +39,8 @@ struct StepResult {
   std::vector<Contact> contacts;  ///< sorted by feature identity
   StepCounters counters;
   StepTimings timings;
+  TraversalStats traversal;        ///< the scheduler's counters (front size, serial time, …)
+  std::vector<PhaseTrace> traces;  ///< per-phase task costs, for the schedule simulator
   /// Filled only when the pipeline records tested pairs (tests of the ownership rule).
   std::vector<VertexFacePair> tested_vf;
   std::vector<EdgeEdgePair> tested_ee;

@@ -14,13 +14,31 @@ struct FacePair {
   auto operator<=>(const FacePair&) const = default;
 };
 
+/// Work counters of a scheduler for one step (summed over passes).
+struct TraversalStats {
+  std::uint64_t bv_tests = 0;         ///< BV overlap tests performed
+  std::uint64_t tasks = 0;            ///< parallel tasks (sub-trees, front chunks) handed out
+  double serial_ms = 0;               ///< time in the scheduler's serial part (top of the BVTT, merging)
+  // BVTT front (scheduler `front`)
+  std::uint64_t front_nodes = 0;      ///< front size after the step
+  std::uint64_t front_bytes = 0;      ///< memory of the front
+  std::uint64_t front_visited = 0;    ///< front nodes processed this step
+  std::uint64_t sprouted = 0;         ///< front nodes that overlapped and descended
+  std::uint64_t pruned = 0;           ///< sibling pairs collapsed back into their parent
+  std::uint64_t rebuilds = 0;         ///< fronts rebuilt from the root this step
+
+  void add(const TraversalStats& o);
+};
+
 struct TraversalOutput {
   std::vector<FacePair> pairs;
-  std::uint64_t bv_tests = 0;  ///< BV overlap tests performed
+  std::uint64_t bv_tests = 0;  ///< BV overlap tests performed (kept beside stats for the sequential kernels)
+  TraversalStats stats;
 
   void clear() {
     pairs.clear();
     bv_tests = 0;
+    stats = {};
   }
 };
 

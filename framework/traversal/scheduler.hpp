@@ -11,6 +11,7 @@
 #include "framework/geometry/kdop.hpp"
 #include "framework/hierarchy/bvh.hpp"
 #include "framework/traversal/candidates.hpp"
+#include "framework/util/parallel.hpp"
 
 namespace ccdlab {
 
@@ -26,14 +27,16 @@ struct TraversalPass {
   const BvhTopology* bvh_b = nullptr;  ///< == bvh_a for self passes
   const AnyBvs* bvs_b = nullptr;
   bool self = true;
+  int threads = 1;  ///< OpenMP threads the scheduler may use
 };
 
 class TraversalScheduler {
  public:
   virtual ~TraversalScheduler() = default;
   [[nodiscard]] virtual std::string_view name() const = 0;
-  /// Appends the candidate face pairs of the pass to out (order unspecified) and counts BV tests.
-  virtual void collect(const TraversalPass& pass, TraversalOutput& out) = 0;
+  /// Appends the candidate face pairs of the pass to out (order unspecified), counts BV tests in out.bv_tests
+  /// and its other work in out.stats, and appends the trace of its parallel part to `traces`.
+  virtual void collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) = 0;
 };
 
 }  // namespace ccdlab

@@ -8,7 +8,7 @@ namespace ccdlab {
 class SequentialScheduler final : public TraversalScheduler {
  public:
   [[nodiscard]] std::string_view name() const override { return "sequential"; }
-  void collect(const TraversalPass& pass, TraversalOutput& out) override;
+  void collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) override;
 };
 
 }  // namespace ccdlab
