@@ -3,7 +3,10 @@
 #include "strategies/builders/median_builder.hpp"
 #include "strategies/builders/sah_builder.hpp"
 #include "strategies/scenes/drape_fold_scene.hpp"
+#include "strategies/schedulers/front_scheduler.hpp"
+#include "strategies/schedulers/phc_scheduler.hpp"
 #include "strategies/schedulers/sequential_scheduler.hpp"
+#include "strategies/schedulers/static_scheduler.hpp"
 #include "strategies/testers/float_tester.hpp"
 
 namespace ccdlab {
@@ -29,6 +32,25 @@ const SchedulerRegistry& scheduler_registry() {
     r.add({"sequential", "depth-first BVTT traversal from the root on one thread (ICCD baseline)", {},
            [](const ParamValues&) -> std::unique_ptr<TraversalScheduler> {
              return std::make_unique<SequentialScheduler>();
+           }});
+    r.add({"phc", "breadth-first top until c*threads sub-tasks, then sub-tasks in parallel, dynamic (MCCD)",
+           {{"c", ParamType::integer, 8LL, "sub-tasks per thread", 1, 100000}},
+           [](const ParamValues& p) -> std::unique_ptr<TraversalScheduler> {
+             return std::make_unique<PhcScheduler>(PhcScheduler::Params{int(p.integer("c"))});
+           }});
+    r.add({"front", "BVTT front kept across steps, processed in parallel chunks; sprout, prune, rebuild (the paper)",
+           {{"chunk", ParamType::integer, 512LL, "front nodes per task", 1, 1 << 24},
+            {"prune", ParamType::boolean, true, "collapse non-overlapping siblings into their parent", 0, 0},
+            {"rebuild_growth", ParamType::real, 2.0, "rebuild when the front grows past this x its rebuilt size (0 = never)", 0, 1e9},
+            {"rebuild_every", ParamType::integer, 0LL, "also rebuild every N steps (0 = never)", 0, 1 << 30}},
+           [](const ParamValues& p) -> std::unique_ptr<TraversalScheduler> {
+             return std::make_unique<FrontScheduler>(FrontScheduler::Params{
+                 int(p.integer("chunk")), p.boolean("prune"), p.real("rebuild_growth"), int(p.integer("rebuild_every"))});
+           }});
+    r.add({"static", "c*threads sub-tasks split into equal-count chunks per thread, no rebalancing (Grinberg)",
+           {{"c", ParamType::integer, 8LL, "sub-tasks per thread", 1, 100000}},
+           [](const ParamValues& p) -> std::unique_ptr<TraversalScheduler> {
+             return std::make_unique<StaticScheduler>(StaticScheduler::Params{int(p.integer("c"))});
            }});
     return r;
   }();

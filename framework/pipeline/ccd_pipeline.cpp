@@ -144,20 +144,25 @@ template <class Pairs, class TestOne>
 void CcdPipeline::test_in_parallel(const Pairs& pairs, std::size_t chunk, const char* phase, StepResult& result,
                                    TestOne&& test_one) {
   const int threads = strategies_.threads;
-  std::vector<std::vector<Contact>> contacts(threads);
-  std::vector<StepCounters> counters(threads);
-  std::vector<StepResult> records(record_tested_ ? threads : 0);
+  struct Local {
+    std::vector<Contact> contacts;
+    StepCounters counters;
+    StepResult record;
+  };
+  std::vector<PerThread<Local>> local(threads);
   PhaseTrace trace{phase, Distribution::dynamic, 0, {}, {}};
   parallel_chunks(pairs.size(), chunk, threads, trace, [&](std::size_t b, std::size_t e, int tid) {
-    StepResult* record = record_tested_ ? &records[tid] : nullptr;
-    for (std::size_t i = b; i < e; ++i) test_one(pairs[i], contacts[tid], counters[tid], record);
+    Local& l = local[tid].value;
+    StepResult* record = record_tested_ ? &l.record : nullptr;
+    for (std::size_t i = b; i < e; ++i) test_one(pairs[i], l.contacts, l.counters, record);
   });
   // Merge in thread order; the final sort makes the result independent of the schedule.
   const auto t0 = Clock::now();
   StepCounters& c = result.counters;
   for (int t = 0; t < threads; ++t) {
-    result.contacts.insert(result.contacts.end(), contacts[t].begin(), contacts[t].end());
-    const StepCounters& l = counters[t];
+    const Local& lt = local[t].value;
+    result.contacts.insert(result.contacts.end(), lt.contacts.begin(), lt.contacts.end());
+    const StepCounters& l = lt.counters;
     c.vf_pairs += l.vf_pairs;
     c.ee_pairs += l.ee_pairs;
     c.vf_tests += l.vf_tests;
@@ -165,8 +170,8 @@ void CcdPipeline::test_in_parallel(const Pairs& pairs, std::size_t chunk, const 
     c.contacts_vf += l.contacts_vf;
     c.contacts_ee += l.contacts_ee;
     if (record_tested_) {
-      result.tested_vf.insert(result.tested_vf.end(), records[t].tested_vf.begin(), records[t].tested_vf.end());
-      result.tested_ee.insert(result.tested_ee.end(), records[t].tested_ee.begin(), records[t].tested_ee.end());
+      result.tested_vf.insert(result.tested_vf.end(), lt.record.tested_vf.begin(), lt.record.tested_vf.end());
+      result.tested_ee.insert(result.tested_ee.end(), lt.record.tested_ee.begin(), lt.record.tested_ee.end());
     }
   }
   trace.serial_ms += ms_since(t0);

@@ -10,6 +10,7 @@
 
 #include "framework/geometry/kdop.hpp"
 #include "framework/hierarchy/bvh.hpp"
+#include "framework/traversal/bvtt.hpp"
 #include "framework/traversal/candidates.hpp"
 #include "framework/util/parallel.hpp"
 
@@ -29,6 +30,18 @@ struct TraversalPass {
   bool self = true;
   int threads = 1;  ///< OpenMP threads the scheduler may use
 };
+
+/// Calls f(BvttView<BV>) with the pass's volumes at their static type: the one place a scheduler dispatches on K.
+template <class F>
+void with_bvtt_view(const TraversalPass& pass, F&& f) {
+  std::visit(
+      [&](const auto& bvs_a) {
+        using BV = typename std::decay_t<decltype(bvs_a)>::value_type;
+        const auto& bvs_b = std::get<std::vector<BV>>(*pass.bvs_b);
+        f(BvttView<BV>{pass.bvh_a, &bvs_a, pass.bvh_b, &bvs_b, pass.mesh, pass.self});
+      },
+      *pass.bvs_a);
+}
 
 class TraversalScheduler {
  public:

@@ -23,6 +23,13 @@ struct PhaseTrace {
   std::vector<double> thread_ms; ///< busy time of each thread
 };
 
+/// Per-thread state padded to its own cache lines: neighbours' counters and vector headers written on every
+/// iteration would otherwise share a line and serialise the threads (false sharing).
+template <class T>
+struct alignas(64) PerThread {
+  T value{};
+};
+
 inline double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }

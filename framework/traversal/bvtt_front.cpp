@@ -1,0 +1,37 @@
+#include "framework/traversal/bvtt_front.hpp"
+
+namespace ccdlab {
+
+std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b, bool self, double granularity) {
+  std::vector<FrontNode> front;
+  if (a.nodes.empty() || b.nodes.empty()) return front;
+  const double la = a.num_leaves(), lb = b.num_leaves();
+  const double max_pairs = std::max(1.0, (self ? la * (la - 1) / 2 : la * lb) / granularity);
+  std::vector<BvttNode> stack;
+  auto split_into_front = [&](BvttNode root) {
+    stack.assign(1, root);
+    while (!stack.empty()) {
+      BvttNode n = stack.back();
+      stack.pop_back();
+      const double na = a.leaf_count[n.a], nb = b.leaf_count[n.b];
+      if (na * nb <= max_pairs || (na == 1 && nb == 1)) {
+        front.push_back(FrontNode{n.a, n.b, FrontNode::kFresh});
+      } else if (na >= nb) {
+        stack.push_back({a.nodes[n.a].right, n.b});
+        stack.push_back({a.nodes[n.a].left, n.b});
+      } else {
+        stack.push_back({n.a, b.nodes[n.b].right});
+        stack.push_back({n.a, b.nodes[n.b].left});
+      }
+    }
+  };
+  if (!self) {
+    split_into_front({0, 0});
+    return front;
+  }
+  for (const BvhNode& n : a.nodes)
+    if (!n.is_leaf()) split_into_front({n.left, n.right});
+  return front;
+}
+
+}  // namespace ccdlab

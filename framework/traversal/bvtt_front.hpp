@@ -1,0 +1,143 @@
+#pragma once
+// The BVTT front (the seed paper's contribution): the BVTT nodes where the last step's traversal stopped —
+// pair nodes whose volumes did not overlap, and leaf pairs. Kept across steps as one flat array, processed in
+// parallel chunks each step:
+//   - a node that now overlaps SPROUTS: a depth-first traversal below it; its stopping nodes replace it;
+//   - two carried-over sibling nodes that still do not overlap, and whose parent does not either, are PRUNED:
+//     collapsed back into the parent (one more BV test), so the front does not only grow;
+//   - the front is REBUILT from the root when it has grown past `rebuild_growth` × its size after the last
+//     rebuild (or every `rebuild_every` steps).
+// Exactness: the nodes of a front cover disjoint sets of leaf pairs whose union is all leaf pairs (a "cut" of
+// the BVTT). Sprouting and pruning keep that property whatever the descent rule, and every leaf pair whose
+// volumes overlap lies below exactly one front node, all of whose descendants on the way overlap too: the
+// candidate set equals the sequential traversal's. Self nodes never stop a traversal, so a self pass starts
+// from the root-level pair nodes (A.left, A.right) of every inner node A. Adjacent leaf pairs (faces sharing a
+// vertex) always overlap and never yield a candidate: they are dropped from the front instead of being
+// re-tested every step, so a self-pass front covers every NON-adjacent leaf pair.
+#include <cstdint>
+#include <vector>
+
+#include "framework/traversal/bvtt.hpp"
+
+namespace ccdlab {
+
+struct FrontNode {
+  Index a;
+  Index b;
+  std::uint8_t flags;  ///< kOverlapped, kFresh
+  static constexpr std::uint8_t kOverlapped = 1;  ///< the last test found the volumes overlapping (leaf pairs)
+  static constexpr std::uint8_t kFresh = 2;       ///< created this step (by a rebuild or a sprout)
+};
+static_assert(sizeof(FrontNode) == 12, "front nodes are 3 words: keep the front compact");
+
+struct FrontCounters {
+  std::uint64_t bv_tests = 0, visited = 0, sprouted = 0, pruned = 0;
+};
+
+/// The front a rebuild starts from: (A.left, A.right) for every inner node A of a self pass, (root_a, root_b)
+/// for a pair pass — each split (without a BV test; its children cover the same leaf pairs) until it covers at
+/// most 1/`granularity` of the pass's leaf pairs, so the first step's sprouting is spread over many balanced
+/// tasks. Depth-first, left first: siblings stay adjacent for pruning. All marked fresh.
+std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b, bool self, double granularity = 4096);
+
+/// Processes front nodes [begin, end): appends their replacements to `next` and candidates to `pairs`.
+template <class BV>
+void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNode* end, bool prune,
+                   std::vector<FrontNode>& next, std::vector<FacePair>& pairs, std::vector<BvttNode>& stack,
+                   FrontCounters& counters) {
+  FrontCounters c;  // local: the caller's counters are written once, at the end
+  const auto& na = v.bvh_a->nodes;
+  const auto& nb = v.bvh_b->nodes;
+  const auto& bva = *v.bv_a;
+  const auto& bvb = *v.bv_b;
+  // An overlapping leaf pair: a candidate, and it stays on the front — unless adjacent (then neither).
+  auto emit = [&](const BvhNode& A, const BvhNode& B, Index a, Index b, std::uint8_t flags) {
+    if (v.self) {
+      if (v.mesh->faces_adjacent(A.face, B.face)) return;
+      pairs.push_back(A.face < B.face ? FacePair{A.face, B.face} : FacePair{B.face, A.face});
+    } else {
+      pairs.push_back({A.face, B.face});
+    }
+    next.push_back(FrontNode{a, b, flags});
+  };
+  // Is `p` an ancestor of (or equal to) `q` in tree a? Sub-tree of p = pre-order range [p, p + 2·leaves − 1).
+  auto contains = [&](Index p, Index q) { return q >= p && q < p + 2 * v.bvh_a->leaf_count[p] - 1; };
+  // Appends a stopping node; then collapses the last two entries into their parent while they are carried-over,
+  // non-overlapping siblings and the parent does not overlap either.
+  auto push_stop = [&](FrontNode n) {
+    next.push_back(n);
+    while (prune && next.size() >= 2) {
+      const FrontNode x = next[next.size() - 2], y = next.back();
+      if ((x.flags | y.flags) != 0) break;  // both carried over and not overlapping
+      Index pa = -1, pb = -1;
+      if (x.b == y.b && x.a != y.a) {
+        const Index p = na[x.a].parent;
+        if (p < 0 || na[p].left != x.a || na[p].right != y.a || (v.self && contains(p, x.b))) break;
+        pa = p, pb = x.b;
+      } else if (x.a == y.a && x.b != y.b) {
+        const Index p = nb[x.b].parent;
+        if (p < 0 || nb[p].left != x.b || nb[p].right != y.b || (v.self && contains(p, x.a))) break;
+        pa = x.a, pb = p;
+      } else {
+        break;
+      }
+      ++c.bv_tests;
+      if (bva[pa].overlaps(bvb[pb])) break;
+      next.pop_back();
+      next.back() = FrontNode{pa, pb, 0};
+      ++c.pruned;
+    }
+  };
+  for (const FrontNode* f = begin; f != end; ++f) {
+    ++c.visited;
+    ++c.bv_tests;
+    const BvhNode& A = na[f->a];
+    const BvhNode& B = nb[f->b];
+    const bool fresh = f->flags & FrontNode::kFresh;
+    if (!bva[f->a].overlaps(bvb[f->b])) {
+      push_stop(FrontNode{f->a, f->b, std::uint8_t(fresh ? FrontNode::kFresh : 0)});
+      continue;
+    }
+    if (A.is_leaf() && B.is_leaf()) {
+      emit(A, B, f->a, f->b, FrontNode::kOverlapped);
+      continue;
+    }
+    // Sprout: depth-first below f; every stopping node joins the front, marked fresh (no prune attempts:
+    // its parent overlaps by construction).
+    ++c.sprouted;
+    stack.clear();
+    stack.push_back({f->a, f->b});
+    bool first = true;
+    while (!stack.empty()) {
+      BvttNode n = stack.back();
+      stack.pop_back();
+      const BvhNode& X = na[n.a];
+      const BvhNode& Y = nb[n.b];
+      if (!first) {
+        ++c.bv_tests;
+        if (!bva[n.a].overlaps(bvb[n.b])) {
+          next.push_back(FrontNode{n.a, n.b, FrontNode::kFresh});
+          continue;
+        }
+        if (X.is_leaf() && Y.is_leaf()) {
+          emit(X, Y, n.a, n.b, FrontNode::kOverlapped | FrontNode::kFresh);
+          continue;
+        }
+      }
+      first = false;
+      if (Y.is_leaf() || (!X.is_leaf() && bva[n.a].size_measure() >= bvb[n.b].size_measure())) {
+        stack.push_back({X.right, n.b});
+        stack.push_back({X.left, n.b});
+      } else {
+        stack.push_back({n.a, Y.right});
+        stack.push_back({n.a, Y.left});
+      }
+    }
+  }
+  counters.bv_tests += c.bv_tests;
+  counters.visited += c.visited;
+  counters.sprouted += c.sprouted;
+  counters.pruned += c.pruned;
+}
+
+}  // namespace ccdlab

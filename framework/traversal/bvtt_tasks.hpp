@@ -1,0 +1,126 @@
+#pragma once
+// Splitting the BVTT into independent tasks and running them on threads: what `phc` and `static` share.
+//   expand_breadth_first : the serial top — breadth-first from the root until a level holds ≥ `want` nodes
+//                          (self nodes open into 3 children, overlapping pair nodes into 2; leaf pairs found
+//                          on the way are candidates already)
+//   run_bvtt_tasks        : each task is a depth-first traversal below its node, into thread-local buffers
+#include <chrono>
+
+#include "framework/traversal/bvtt.hpp"
+#include "framework/traversal/scheduler.hpp"
+#include "framework/util/parallel.hpp"
+
+namespace ccdlab {
+
+template <class BV>
+std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t want, TraversalOutput& out) {
+  const auto& na = v.bvh_a->nodes;
+  const auto& nb = v.bvh_b->nodes;
+  std::vector<BvttNode> level{{0, 0}}, next;
+  while (!level.empty() && level.size() < want) {
+    next.clear();
+    bool opened = false;
+    for (BvttNode n : level) {
+      const BvhNode& A = na[n.a];
+      if (v.self && n.a == n.b) {
+        if (A.is_leaf()) continue;
+        next.push_back({A.left, A.left});
+        next.push_back({A.right, A.right});
+        next.push_back({A.left, A.right});
+        opened = true;
+        continue;
+      }
+      ++out.bv_tests;
+      if (!(*v.bv_a)[n.a].overlaps((*v.bv_b)[n.b])) continue;
+      const BvhNode& B = nb[n.b];
+      if (A.is_leaf() && B.is_leaf()) {
+        if (!v.self) out.pairs.push_back({A.face, B.face});
+        else if (!v.mesh->faces_adjacent(A.face, B.face))
+          out.pairs.push_back(A.face < B.face ? FacePair{A.face, B.face} : FacePair{B.face, A.face});
+        continue;
+      }
+      opened = true;
+      if (B.is_leaf() || (!A.is_leaf() && (*v.bv_a)[n.a].size_measure() >= (*v.bv_b)[n.b].size_measure())) {
+        next.push_back({A.left, n.b});
+        next.push_back({A.right, n.b});
+      } else {
+        next.push_back({n.a, B.left});
+        next.push_back({n.a, B.right});
+      }
+    }
+    std::swap(level, next);
+    if (!opened) break;
+  }
+  return level;
+}
+
+/// Runs a depth-first traversal below each task on `threads` threads: dynamically (one task at a time to
+/// whichever thread is free) or in `threads` equal-count contiguous chunks fixed before the start.
+template <class BV>
+void run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, int threads, Distribution dist,
+                    TraversalOutput& out, PhaseTrace& trace) {
+  using Clock = std::chrono::steady_clock;
+  std::vector<PerThread<TraversalOutput>> local(threads);
+  trace.distribution = dist;
+  trace.task_ms.assign(tasks.size(), 0.0);
+  trace.thread_ms.assign(threads, 0.0);
+  auto run_one = [&](std::size_t i, int tid, std::vector<BvttNode>& stack) {
+    const auto t0 = Clock::now();
+    TraversalOutput& o = local[tid].value;
+    // traverse_bvtt clears nothing in `o` but appends; it needs its own stack.
+    traverse_bvtt(v, tasks[i], stack, o);
+    const double ms = ms_between(t0, Clock::now());
+    trace.task_ms[i] = ms;
+    trace.thread_ms[tid] += ms;
+  };
+  if (dist == Distribution::dynamic) {
+#pragma omp parallel num_threads(threads)
+    {
+      std::vector<BvttNode> stack;
+      const int tid = omp_get_thread_num();
+#pragma omp for schedule(dynamic, 1)
+      for (std::ptrdiff_t i = 0; i < std::ptrdiff_t(tasks.size()); ++i) run_one(std::size_t(i), tid, stack);
+    }
+  } else {
+#pragma omp parallel num_threads(threads)
+    {
+      std::vector<BvttNode> stack;
+      const int tid = omp_get_thread_num(), nt = omp_get_num_threads();
+      const std::size_t begin = tasks.size() * std::size_t(tid) / std::size_t(nt);
+      const std::size_t end = tasks.size() * std::size_t(tid + 1) / std::size_t(nt);
+      for (std::size_t i = begin; i < end; ++i) run_one(i, tid, stack);
+    }
+  }
+  const auto t0 = Clock::now();
+  for (const auto& l : local) {
+    const TraversalOutput& o = l.value;
+    out.pairs.insert(out.pairs.end(), o.pairs.begin(), o.pairs.end());
+    out.bv_tests += o.bv_tests;
+  }
+  trace.serial_ms += ms_between(t0, Clock::now());
+}
+
+}  // namespace ccdlab
+
+namespace ccdlab {
+
+/// Breadth-first split of the pass's BVTT into ≥ tasks_per_thread·threads tasks (serial, timed as the trace's
+/// serial part), then the tasks on threads. Shared by `phc` (dynamic) and `static` (fixed chunks).
+inline void split_and_run(const TraversalPass& pass, int tasks_per_thread, Distribution dist, const char* phase,
+                          TraversalOutput& out, std::vector<PhaseTrace>& traces) {
+  if (pass.bvh_a->nodes.empty() || pass.bvh_b->nodes.empty()) return;
+  with_bvtt_view(pass, [&](const auto& view) {
+    PhaseTrace trace{phase, dist, 0, {}, {}};
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::size_t want = std::size_t(tasks_per_thread) * std::size_t(pass.threads);
+    std::vector<BvttNode> tasks = expand_breadth_first(view, want, out);
+    const double serial = ms_between(t0, std::chrono::steady_clock::now());
+    trace.serial_ms += serial;
+    out.stats.serial_ms += serial;
+    out.stats.tasks += tasks.size();
+    run_bvtt_tasks(view, tasks, pass.threads, dist, out, trace);
+    traces.push_back(std::move(trace));
+  });
+}
+
+}  // namespace ccdlab

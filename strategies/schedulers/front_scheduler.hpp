@@ -1,0 +1,38 @@
+#pragma once
+// `front`: BVTT-front decomposition (the seed paper's method; front maintenance in framework/traversal/
+// bvtt_front.hpp). The front of each pass is kept across steps; each step its nodes are processed in parallel,
+// in fixed-size chunks handed out dynamically, so the first traversal from the root (the serial top of `phc`)
+// disappears after the first step and the BV tests above the front are not repeated (the paper's λ).
+// Chunk outputs are concatenated in chunk order, so the front — and the work — does not depend on the thread
+// count.
+#include <map>
+
+#include "framework/traversal/bvtt_front.hpp"
+#include "framework/traversal/scheduler.hpp"
+
+namespace ccdlab {
+
+class FrontScheduler final : public TraversalScheduler {
+ public:
+  struct Params {
+    int chunk = 512;               ///< front nodes per task
+    bool prune = true;             ///< collapse non-overlapping siblings back into their parent
+    double rebuild_growth = 2.0;   ///< rebuild when the front exceeds this × its size after the last rebuild (0 = never)
+    int rebuild_every = 0;         ///< also rebuild every N steps (0 = never)
+  };
+  FrontScheduler() = default;
+  explicit FrontScheduler(Params p) : params_(p) {}
+  [[nodiscard]] std::string_view name() const override { return "front"; }
+  void collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) override;
+
+ private:
+  struct PassFront {
+    std::vector<FrontNode> nodes;
+    std::size_t size_after_rebuild = 0;
+    int steps_since_rebuild = 0;
+  };
+  Params params_{};
+  std::map<int, PassFront> fronts_;  ///< by TraversalPass::id
+};
+
+}  // namespace ccdlab
