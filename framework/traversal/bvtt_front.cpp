@@ -2,11 +2,12 @@
 
 namespace ccdlab {
 
-std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b, bool self, double granularity) {
+std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b, bool self, double granularity,
+                                     double min_pairs) {
   std::vector<FrontNode> front;
   if (a.nodes.empty() || b.nodes.empty()) return front;
   const double la = a.num_leaves(), lb = b.num_leaves();
-  const double max_pairs = std::max(1.0, (self ? la * (la - 1) / 2 : la * lb) / granularity);
+  const double max_pairs = std::max(min_pairs, (self ? la * (la - 1) / 2 : la * lb) / granularity);
   std::vector<BvttNode> stack;
   auto split_into_front = [&](BvttNode root) {
     stack.assign(1, root);

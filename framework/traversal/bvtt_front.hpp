@@ -36,9 +36,11 @@ struct FrontCounters {
 
 /// The front a rebuild starts from: (A.left, A.right) for every inner node A of a self pass, (root_a, root_b)
 /// for a pair pass — each split (without a BV test; its children cover the same leaf pairs) until it covers at
-/// most 1/`granularity` of the pass's leaf pairs, so the first step's sprouting is spread over many balanced
+/// most 1/`granularity` of the pass's leaf pairs (and no fewer than `min_pairs`), so the first step's sprouting is
+/// spread over many balanced
 /// tasks. Depth-first, left first: siblings stay adjacent for pruning. All marked fresh.
-std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b, bool self, double granularity = 4096);
+std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b, bool self, double granularity = 512,
+                                     double min_pairs = 4096);
 
 /// Processes front nodes [begin, end): appends their replacements to `next` and candidates to `pairs`.
 template <class BV>

@@ -68,4 +68,10 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
   traces.push_back(std::move(trace));
 }
 
+const std::vector<FrontNode>& FrontScheduler::front(int pass_id) const {
+  static const std::vector<FrontNode> none;
+  auto it = fronts_.find(pass_id);
+  return it == fronts_.end() ? none : it->second.nodes;
+}
+
 }  // namespace ccdlab

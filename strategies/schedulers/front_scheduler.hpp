@@ -24,6 +24,8 @@ class FrontScheduler final : public TraversalScheduler {
   explicit FrontScheduler(Params p) : params_(p) {}
   [[nodiscard]] std::string_view name() const override { return "front"; }
   void collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) override;
+  /// The current front of a pass (empty before its first step) — for tests and reports.
+  [[nodiscard]] const std::vector<FrontNode>& front(int pass_id) const;
 
  private:
   struct PassFront {
