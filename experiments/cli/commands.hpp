@@ -26,6 +26,18 @@ struct StepOptions {
 };
 int step_command(const StepOptions& o);
 
+struct BenchOptions {
+  std::string config;
+  std::vector<std::string> overrides;
+  std::string schedulers = "sequential,phc,front,static";
+  std::string threads = "1,2";
+  std::string cores = "1,2,4,8,16,32,64";
+  int rounds = 3;
+  bool json = false;
+  bool progress = true;
+};
+int bench_command(const BenchOptions& o);
+
 int list_command();
 int info_command();
 

@@ -30,6 +30,18 @@ int main(int argc, char** argv) {
   step_cmd->add_option("--contacts", step.contacts_csv, "write contacts to this CSV (kind,a,b,c,d,toi)");
   step_cmd->add_flag("--json", step.json, "print JSON instead of the table");
 
+  BenchOptions bench;
+  bool bench_no_progress = false;
+  auto* bench_cmd = app.add_subcommand("bench", "schedulers x threads in alternating rounds; counters; simulated scaling");
+  bench_cmd->add_option("config", bench.config, "experiment YAML file (scene, k, tester, output.dir)")->required();
+  bench_cmd->add_option("--set", bench.overrides, "override a config key (repeatable)");
+  bench_cmd->add_option("--schedulers", bench.schedulers, "comma-separated schedulers")->capture_default_str();
+  bench_cmd->add_option("--threads", bench.threads, "comma-separated thread counts")->capture_default_str();
+  bench_cmd->add_option("--cores", bench.cores, "simulated core counts")->capture_default_str();
+  bench_cmd->add_option("--rounds", bench.rounds, "alternating rounds")->capture_default_str();
+  bench_cmd->add_flag("--json", bench.json, "print one JSON object instead of the tables");
+  bench_cmd->add_flag("--no-progress", bench_no_progress, "no progress line on stderr");
+
   auto* list_cmd = app.add_subcommand("list", "registered strategies and their parameters");
   auto* info_cmd = app.add_subcommand("info", "compiler, flags, OpenMP, git revision");
 
@@ -44,6 +56,10 @@ int main(int argc, char** argv) {
       return run_command(run);
     }
     if (*step_cmd) return step_command(step);
+    if (*bench_cmd) {
+      bench.progress = !bench_no_progress;
+      return bench_command(bench);
+    }
     if (*list_cmd) return list_command();
     if (*info_cmd) return info_command();
   } catch (const ccdlab::Error& e) {

@@ -13,6 +13,7 @@ double ms_since(Clock::time_point t) { return ms_between(t, Clock::now()); }
 /// Chunk sizes of the parallel phases: large enough to amortise scheduling, small enough to balance.
 constexpr std::size_t kCandidateChunk = 256;
 constexpr std::size_t kOrphanChunk = 4096;
+constexpr std::size_t kFaceChunk = 2048;
 
 }  // namespace
 
@@ -27,16 +28,20 @@ AnyBvs make_bvs(int k) {
 }
 
 void compute_face_bvs(const TriMesh& mesh, const Positions& x0, const Positions& x1, double thickness, AnyBvs& out,
-                      int threads) {
+                      int threads, PhaseTrace* trace) {
+  PhaseTrace unused;
   std::visit(
       [&](auto& bvs) {
         using BV = typename std::decay_t<decltype(bvs)>::value_type;
         bvs.resize(mesh.num_faces());
-#pragma omp parallel for schedule(static) num_threads(threads)
-        for (Index f = 0; f < mesh.num_faces(); ++f) {
-          const Face& t = mesh.face(f);
-          bvs[f] = swept_triangle_bv<BV>(x0[t[0]], x0[t[1]], x0[t[2]], x1[t[0]], x1[t[1]], x1[t[2]], thickness);
-        }
+        parallel_chunks(std::size_t(mesh.num_faces()), kFaceChunk, threads, trace ? *trace : unused,
+                        [&](std::size_t b, std::size_t e, int) {
+                          for (std::size_t f = b; f < e; ++f) {
+                            const Face& t = mesh.face(Index(f));
+                            bvs[f] = swept_triangle_bv<BV>(x0[t[0]], x0[t[1]], x0[t[2]], x1[t[0]], x1[t[1]],
+                                                           x1[t[2]], thickness);
+                          }
+                        });
       },
       out);
 }
@@ -188,15 +193,17 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   const auto t_start = Clock::now();
 
   auto t = Clock::now();
-  if (!built_) build_hierarchies(x_t0, x_t1);
-  tm.build_ms = ms_since(t);
+  if (!built_) {
+    build_hierarchies(x_t0, x_t1);
+    tm.build_ms = ms_since(t);
+    result.traces.push_back(PhaseTrace{"build", Distribution::dynamic, tm.build_ms, {}, {}});  // serial
+  }
 
   t = Clock::now();
-  compute_face_bvs(mesh_, x_t0, x_t1, strategies_.tester->thickness(), face_bvs_, threads);
+  PhaseTrace swept{"swept_bv", Distribution::dynamic, 0, {}, {}};
+  compute_face_bvs(mesh_, x_t0, x_t1, strategies_.tester->thickness(), face_bvs_, threads, &swept);
+  result.traces.push_back(std::move(swept));
   tm.swept_bv_ms = ms_since(t);
-  // Static split into equal parts: recorded as one task per thread of equal cost.
-  result.traces.push_back(PhaseTrace{"swept_bv", Distribution::static_chunks, 0,
-                                     std::vector<double>(threads, tm.swept_bv_ms), {}});
 
   t = Clock::now();
   for (BodyState& body : bodies_) {
@@ -216,7 +223,9 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   tm.traverse_ms = ms_since(t);
 
   t = Clock::now();
-  narrow_.begin_step(x_t0, x_t1);  // per-step feature boxes (sequential: O(V + E + F), cheap)
+  PhaseTrace boxes{"feature_boxes", Distribution::dynamic, 0, {}, {}};
+  narrow_.begin_step(x_t0, x_t1, threads, &boxes);  // swept boxes of every vertex, edge, face
+  result.traces.push_back(std::move(boxes));
   test_in_parallel(candidates_.pairs, kCandidateChunk, "narrow", result,
                    [this](const FacePair& p, std::vector<Contact>& out, StepCounters& lc, StepResult* rec) {
                      narrow_.test_face_pair(p.a, p.b, out, lc, rec);
@@ -240,7 +249,9 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   c.orphan_tests = c.vf_tests + c.ee_tests - tests_before;
   tm.orphan_ms = ms_since(t);
 
+  t = Clock::now();
   sort_contacts(result.contacts);
+  result.traces.push_back(PhaseTrace{"sort_contacts", Distribution::dynamic, ms_since(t), {}, {}});  // serial
   tm.total_ms = ms_since(t_start);
   return result;
 }

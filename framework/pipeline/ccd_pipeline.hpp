@@ -83,8 +83,9 @@ class CcdPipeline {
 /// An AnyBvs holding an empty vector of KDop<k>; throws Error unless k ∈ {6, 14, 18, 26}.
 AnyBvs make_bvs(int k);
 
-/// Swept k-DOP of every face of the mesh over the step (inflated by thickness), on `threads` threads.
+/// Swept k-DOP of every face of the mesh over the step (inflated by thickness), on `threads` threads; the
+/// task costs go to `trace` when given.
 void compute_face_bvs(const TriMesh& mesh, const Positions& x_t0, const Positions& x_t1, double thickness, AnyBvs& out,
-                      int threads = 1);
+                      int threads = 1, PhaseTrace* trace = nullptr);
 
 }  // namespace ccdlab

@@ -2,31 +2,47 @@
 
 namespace ccdlab {
 
-void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1) {
+void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, int threads, PhaseTrace* trace) {
   x_t0_ = &x_t0;
   x_t1_ = &x_t1;
-  vertex_box_.resize(x_t0.size());
-  for (std::size_t v = 0; v < x_t0.size(); ++v) {
-    vertex_box_[v].lo = x_t0[v].cwiseMin(x_t1[v]);
-    vertex_box_[v].hi = x_t0[v].cwiseMax(x_t1[v]);
-  }
   const double eta = tester_.thickness();
+  vertex_box_.resize(x_t0.size());
   edge_box_.resize(mesh_.num_edges());
-  for (Index e = 0; e < mesh_.num_edges(); ++e) {
-    Box3 b = vertex_box_[mesh_.edge(e)[0]];
-    b.grow(vertex_box_[mesh_.edge(e)[1]]);
-    b.inflate(eta);
-    edge_box_[e] = b;
-  }
   face_box_.resize(mesh_.num_faces());
-  for (Index f = 0; f < mesh_.num_faces(); ++f) {
-    const Face& t = mesh_.face(f);
-    Box3 b = vertex_box_[t[0]];
-    b.grow(vertex_box_[t[1]]);
-    b.grow(vertex_box_[t[2]]);
-    b.inflate(eta);
-    face_box_[f] = b;
-  }
+  PhaseTrace unused, part;
+  PhaseTrace& out = trace ? *trace : unused;
+  constexpr std::size_t chunk = 4096;
+  parallel_chunks(x_t0.size(), chunk, threads, out, [&](std::size_t b, std::size_t e, int) {
+    for (std::size_t v = b; v < e; ++v) {
+      vertex_box_[v].lo = x_t0[v].cwiseMin(x_t1[v]);
+      vertex_box_[v].hi = x_t0[v].cwiseMax(x_t1[v]);
+    }
+  });
+  // Edge and face boxes need every vertex box: a second and third parallel loop, traced as more tasks.
+  auto append = [&](const PhaseTrace& p) {
+    out.task_ms.insert(out.task_ms.end(), p.task_ms.begin(), p.task_ms.end());
+    for (std::size_t t = 0; t < p.thread_ms.size() && t < out.thread_ms.size(); ++t) out.thread_ms[t] += p.thread_ms[t];
+  };
+  parallel_chunks(std::size_t(mesh_.num_edges()), chunk, threads, part, [&](std::size_t b, std::size_t e, int) {
+    for (std::size_t i = b; i < e; ++i) {
+      Box3 box = vertex_box_[mesh_.edge(Index(i))[0]];
+      box.grow(vertex_box_[mesh_.edge(Index(i))[1]]);
+      box.inflate(eta);
+      edge_box_[i] = box;
+    }
+  });
+  append(part);
+  parallel_chunks(std::size_t(mesh_.num_faces()), chunk, threads, part, [&](std::size_t b, std::size_t e, int) {
+    for (std::size_t f = b; f < e; ++f) {
+      const Face& t = mesh_.face(Index(f));
+      Box3 box = vertex_box_[t[0]];
+      box.grow(vertex_box_[t[1]]);
+      box.grow(vertex_box_[t[2]]);
+      box.inflate(eta);
+      face_box_[f] = box;
+    }
+  });
+  append(part);
 }
 
 VertexFaceQuery NarrowPhase::vf_query(Index v, Index f) const {

@@ -7,6 +7,7 @@
 #include "framework/pipeline/step_result.hpp"
 #include "framework/primitive/feature_pairs.hpp"
 #include "framework/primitive/tester.hpp"
+#include "framework/util/parallel.hpp"
 
 namespace ccdlab {
 
@@ -16,7 +17,7 @@ class NarrowPhase {
       : mesh_(mesh), owners_(owners), tester_(tester) {}
 
   /// Sets the two frames of the step and computes the swept box of every vertex, edge and face.
-  void begin_step(const Positions& x_t0, const Positions& x_t1);
+  void begin_step(const Positions& x_t0, const Positions& x_t1, int threads = 1, PhaseTrace* trace = nullptr);
 
   /// One VF feature pair (v ∉ f): box cull, then the elementary test; appends a contact on hit.
   void test_vf(Index v, Index f, std::vector<Contact>& out, StepCounters& c, bool box_cull = true) const;

@@ -1,0 +1,229 @@
+// `ccdlab bench CONFIG.yaml [--set k=v …] [--schedulers LIST] [--threads LIST] [--rounds R] [--cores LIST]`:
+// every scheduler × thread count on the config's scene, in alternating rounds (A B C …, then … C B A) so drift
+// hits all alike; per configuration the median over rounds of the mean ms per step. Checks that every
+// configuration found the identical contact sets (exit 1 otherwise), reports the counters that explain speed
+// (BV tests and λ, front size, serial part, thread imbalance), and replays the recorded task costs of the
+// 1-thread runs on N simulated cores (framework/pipeline/schedule_sim.hpp). Writes bench.csv, scaling.csv and
+// bench.jsonl to output.dir.
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#include "ccdlab/build_info.hpp"
+#include "experiments/cli/commands.hpp"
+#include "experiments/cli/report.hpp"
+#include "framework/pipeline/schedule_sim.hpp"
+#include "framework/util/error.hpp"
+#include "framework/util/progress.hpp"
+#include "strategies/registry.hpp"
+
+namespace ccdlab::cli {
+namespace {
+
+struct Config {
+  std::string scheduler;
+  int threads;
+};
+
+struct Measured {
+  std::vector<double> ms_per_step;  ///< one value per round: mean over steps
+  std::uint64_t hash = 0;
+  std::uint64_t bv_tests = 0, candidates = 0, elementary_tests = 0;
+  std::uint64_t front_max = 0, front_bytes_max = 0, sprouted = 0, pruned = 0, rebuilds = 0;
+  double serial_ms = 0, traverse_ms = 0, imbalance_sum = 0;
+  int imbalance_n = 0;
+  std::vector<std::vector<PhaseTrace>> traces;  ///< per step, from the first round
+};
+
+std::vector<int> parse_ints(const std::string& list, const char* option) {
+  std::vector<int> out;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    std::size_t comma = list.find(',', start);
+    std::string item = list.substr(start, comma - start);
+    try {
+      std::size_t used = 0;
+      int v = std::stoi(item, &used);
+      if (used != item.size() || v < 1) throw std::invalid_argument(item);
+      out.push_back(v);
+    } catch (const std::exception&) {
+      fail("--{}: expected a comma-separated list of integers >= 1, got '{}'", option, list);
+    }
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+std::vector<std::string> parse_names(const std::string& list) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (;;) {
+    std::size_t comma = list.find(',', start);
+    out.push_back(list.substr(start, comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+int bench_command(const BenchOptions& o) {
+  const Registries reg = builtin_registries();
+  ExperimentConfig config = load_experiment(o.config, o.overrides, reg);
+  const std::vector<std::string> schedulers = parse_names(o.schedulers);
+  for (const auto& s : schedulers)
+    if (!reg.schedulers.find(s))
+      fail("--schedulers: expected names from {}, got '{}'", fmt::join(reg.schedulers.names(), ", "), s);
+  const std::vector<int> threads = parse_ints(o.threads, "threads");
+  const std::vector<int> cores = parse_ints(o.cores, "cores");
+  if (o.rounds < 1) fail("--rounds: expected an integer >= 1, got {}", o.rounds);
+
+  const MeshSequence scene = make_scene(config, reg);
+  std::vector<Positions> frames;
+  for (int f = 0; f < scene.num_frames(); ++f) frames.push_back(scene.frame(f));  // outside the timing
+  const int steps = scene.num_steps();
+
+  std::vector<Config> configs;
+  for (const auto& s : schedulers)
+    for (int t : threads) configs.push_back({s, t});
+  std::vector<Measured> measured(configs.size());
+
+  Progress progress("ccdlab bench", long(o.rounds * configs.size()), o.progress && Progress::stderr_is_terminal());
+  long done = 0;
+  for (int round = 0; round < o.rounds; ++round) {
+    for (std::size_t j = 0; j < configs.size(); ++j) {
+      const std::size_t i = round % 2 == 0 ? j : configs.size() - 1 - j;  // alternate the order
+      ExperimentConfig c = config;
+      c.scheduler = {configs[i].scheduler, reg.schedulers.find(configs[i].scheduler)->defaults()};
+      if (config.scheduler.name == configs[i].scheduler) c.scheduler = config.scheduler;  // keep --set params
+      c.threads = configs[i].threads;
+      CcdPipeline pipeline(scene.topology(), scene.bodies(), make_strategies(c, reg));
+      Measured& m = measured[i];
+      double total = 0;
+      std::uint64_t hash = contact_set_hash({});
+      for (int s = 0; s < steps; ++s) {
+        StepResult r = pipeline.step(frames[s], frames[s + 1]);
+        total += r.timings.total_ms;
+        hash = contact_set_hash(r.contacts, hash);
+        if (round == 0) {
+          m.bv_tests += r.counters.bv_tests;
+          m.candidates += r.counters.candidate_pairs;
+          m.elementary_tests += r.counters.vf_tests + r.counters.ee_tests;
+          m.front_max = std::max(m.front_max, r.traversal.front_nodes);
+          m.front_bytes_max = std::max(m.front_bytes_max, r.traversal.front_bytes);
+          m.sprouted += r.traversal.sprouted;
+          m.pruned += r.traversal.pruned;
+          m.rebuilds += r.traversal.rebuilds;
+          m.serial_ms += r.traversal.serial_ms;
+          m.traverse_ms += r.timings.traverse_ms;
+          for (const PhaseTrace& t : r.traces)
+            if (t.phase == "traverse" && !t.thread_ms.empty()) m.imbalance_sum += imbalance(t), ++m.imbalance_n;
+          m.traces.push_back(std::move(r.traces));
+        }
+      }
+      if (round == 0) m.hash = hash;
+      else if (hash != m.hash) fail("bench: {} x{} changed its answer between rounds", configs[i].scheduler, configs[i].threads);
+      m.ms_per_step.push_back(total / steps);
+      progress.update(++done);
+    }
+  }
+
+  // Reference: sequential at 1 thread (or the first configuration).
+  std::size_t ref = 0;
+  for (std::size_t i = 0; i < configs.size(); ++i)
+    if (configs[i].scheduler == "sequential" && configs[i].threads == 1) ref = i;
+  const double ref_ms = median(measured[ref].ms_per_step);
+  bool identical = true;
+  for (const Measured& m : measured) identical &= m.hash == measured[0].hash;
+
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(config.output.dir, ec);
+  if (ec) fail("output.dir: cannot create '{}': {}", config.output.dir, ec.message());
+  const std::string rev = build_info::git_revision;
+  std::ofstream csv(fs::path(config.output.dir) / "bench.csv");
+  std::ofstream scaling(fs::path(config.output.dir) / "scaling.csv");
+  std::ofstream jsonl(fs::path(config.output.dir) / "bench.jsonl");
+  if (!csv || !scaling || !jsonl) fail("output.dir: cannot write results to '{}'", config.output.dir);
+  const nlohmann::json config_json = to_json(config);
+  jsonl << nlohmann::json{{"type", "config"}, {"config", config_json}, {"git_revision", rev}, {"scene", scene.description()},
+                          {"triangles", scene.topology().num_faces()}, {"steps", steps}, {"rounds", o.rounds}}
+               .dump()
+        << "\n";
+  csv << "scheduler,threads,ms_per_step,speedup,bv_tests_per_step,lambda,candidates_per_step,elementary_tests_per_step,"
+         "traverse_ms_per_step,serial_ms_per_step,imbalance,front_nodes_max,front_bytes_max,sprouted_per_step,"
+         "pruned_per_step,rebuilds,hash,git_revision\n";
+  scaling << "scheduler,cores,predicted_ms_per_step,predicted_speedup,measured_ms_per_step\n";
+
+  const std::uint64_t seq_bv = measured[ref].bv_tests;
+  if (!o.json) {
+    fmt::print("ccdlab bench {} — {}, {} steps, {} rounds (alternating), rev {}\n", config.name, scene.description(),
+               steps, o.rounds, rev);
+    fmt::print("k={} tester={}; speed-up against {} x{} = {:.2f} ms/step\n\n", config.k, config.tester.name,
+               configs[ref].scheduler, configs[ref].threads, ref_ms);
+    fmt::print("{:>10} {:>3} {:>9} {:>7} {:>11} {:>6} {:>10} {:>9} {:>9} {:>9} {:>10}\n", "scheduler", "thr", "ms/step",
+               "speedup", "BV tests", "lambda", "traverse", "serial", "imbal.", "front", "front MB");
+  }
+  nlohmann::json out_rows = nlohmann::json::array();
+  for (std::size_t i = 0; i < configs.size(); ++i) {
+    const Measured& m = measured[i];
+    const double ms = median(m.ms_per_step);
+    const double lambda = seq_bv ? double(m.bv_tests) / double(seq_bv) : 0;
+    const double imb = m.imbalance_n ? m.imbalance_sum / m.imbalance_n : 0;
+    csv << fmt::format("{},{},{:.4f},{:.4f},{},{:.4f},{},{},{:.4f},{:.4f},{:.4f},{},{},{},{},{},{:016x},{}\n",
+                       configs[i].scheduler, configs[i].threads, ms, ref_ms / ms, m.bv_tests / steps, lambda,
+                       m.candidates / steps, m.elementary_tests / steps, m.traverse_ms / steps, m.serial_ms / steps, imb,
+                       m.front_max, m.front_bytes_max, m.sprouted / steps, m.pruned / steps, m.rebuilds, m.hash, rev);
+    nlohmann::json row = {{"scheduler", configs[i].scheduler}, {"threads", configs[i].threads}, {"ms_per_step", ms},
+                          {"speedup", ref_ms / ms}, {"bv_tests_per_step", m.bv_tests / steps}, {"lambda", lambda},
+                          {"traverse_ms_per_step", m.traverse_ms / steps}, {"serial_ms_per_step", m.serial_ms / steps},
+                          {"imbalance", imb}, {"front_nodes_max", m.front_max}, {"front_bytes_max", m.front_bytes_max},
+                          {"hash", fmt::format("{:016x}", m.hash)}};
+    out_rows.push_back(row);
+    jsonl << nlohmann::json{{"type", "config_result"}, {"result", row}}.dump() << "\n";
+    if (!o.json)
+      fmt::print("{:>10} {:>3} {:>9.2f} {:>6.2f}x {:>11} {:>6.3f} {:>10.2f} {:>9.2f} {:>9.2f} {:>9} {:>10.2f}\n",
+                 configs[i].scheduler, configs[i].threads, ms, ref_ms / ms, m.bv_tests / steps, lambda,
+                 m.traverse_ms / steps, m.serial_ms / steps, imb, m.front_max, m.front_bytes_max / 1e6);
+  }
+
+  // Simulated scaling from the 1-thread task costs; validated where a measured run exists.
+  nlohmann::json sim_rows = nlohmann::json::array();
+  if (!o.json) fmt::print("\nsimulated ms/step (speed-up vs {} x1) from 1-thread task costs; [measured] where run:\n",
+                          configs[ref].scheduler);
+  for (std::size_t i = 0; i < configs.size(); ++i) {
+    if (configs[i].threads != 1) continue;
+    std::string line = fmt::format("{:>10}", configs[i].scheduler);
+    for (int n : cores) {
+      double predicted = 0;
+      for (const auto& step_traces : measured[i].traces) predicted += simulate_step(step_traces, n);
+      predicted /= steps;
+      double measured_ms = -1;
+      for (std::size_t j = 0; j < configs.size(); ++j)
+        if (configs[j].scheduler == configs[i].scheduler && configs[j].threads == n) measured_ms = median(measured[j].ms_per_step);
+      scaling << fmt::format("{},{},{:.4f},{:.4f},{}\n", configs[i].scheduler, n, predicted, ref_ms / predicted,
+                             measured_ms < 0 ? std::string() : fmt::format("{:.4f}", measured_ms));
+      sim_rows.push_back({{"scheduler", configs[i].scheduler}, {"cores", n}, {"predicted_ms_per_step", predicted},
+                          {"predicted_speedup", ref_ms / predicted},
+                          {"measured_ms_per_step", measured_ms < 0 ? nlohmann::json() : nlohmann::json(measured_ms)}});
+      line += measured_ms < 0 ? fmt::format(" | {}: {:.2f} ({:.2f}x)", n, predicted, ref_ms / predicted)
+                              : fmt::format(" | {}: {:.2f} ({:.2f}x) [{:.2f}, {:+.0f}%]", n, predicted, ref_ms / predicted,
+                                            measured_ms, 100 * (predicted - measured_ms) / measured_ms);
+    }
+    if (!o.json) fmt::print("{}\n", line);
+  }
+  jsonl << nlohmann::json{{"type", "scaling"}, {"rows", sim_rows}}.dump() << "\n";
+  if (o.json)
+    fmt::print("{}\n", nlohmann::json{{"configs", out_rows}, {"scaling", sim_rows}, {"identical", identical},
+                                      {"reference_ms_per_step", ref_ms}, {"steps", steps}, {"git_revision", rev}}
+                           .dump(2));
+  else
+    fmt::print("\ncontact sets identical across all configurations: {} (hash {:016x})\nresults in {}/\n",
+               identical ? "yes" : "NO", measured[0].hash, config.output.dir);
+  return identical ? 0 : 1;
+}
+
+}  // namespace ccdlab::cli

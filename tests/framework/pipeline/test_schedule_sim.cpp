@@ -1,0 +1,33 @@
+#include <gtest/gtest.h>
+
+#include "framework/pipeline/schedule_sim.hpp"
+
+namespace ccdlab {
+namespace {
+
+TEST(ScheduleSim, DynamicListScheduling) {
+  PhaseTrace t{"p", Distribution::dynamic, 1.0, {4, 1, 1, 1, 1}, {}};
+  EXPECT_DOUBLE_EQ(simulate_phase(t, 1), 9.0);
+  EXPECT_DOUBLE_EQ(simulate_phase(t, 2), 5.0);   // 4 | 1+1+1+1
+  EXPECT_DOUBLE_EQ(simulate_phase(t, 8), 5.0);   // the longest task bounds it
+  PhaseTrace late_big{"p", Distribution::dynamic, 0, {1, 1, 1, 1, 4}, {}};
+  EXPECT_DOUBLE_EQ(simulate_phase(late_big, 2), 6.0);  // order matters: the big task starts at 2
+}
+
+TEST(ScheduleSim, StaticChunksDoNotRebalance) {
+  PhaseTrace t{"p", Distribution::static_chunks, 0, {4, 4, 1, 1}, {}};
+  EXPECT_DOUBLE_EQ(simulate_phase(t, 2), 8.0);  // chunks {4, 4} and {1, 1}
+  t.distribution = Distribution::dynamic;
+  EXPECT_DOUBLE_EQ(simulate_phase(t, 2), 5.0);  // 4+1 | 4+1
+}
+
+TEST(ScheduleSim, StepSumsPhasesAndSerialPartsStaySerial) {
+  std::vector<PhaseTrace> step{{"a", Distribution::dynamic, 2.0, {}, {}},
+                               {"b", Distribution::dynamic, 0.5, std::vector<double>(64, 1.0), {}}};
+  EXPECT_DOUBLE_EQ(simulate_step(step, 1), 66.5);
+  EXPECT_DOUBLE_EQ(simulate_step(step, 64), 3.5);
+  EXPECT_DOUBLE_EQ(imbalance({"x", Distribution::dynamic, 0, {}, {3.0, 1.0}}), 1.5);
+}
+
+}  // namespace
+}  // namespace ccdlab
