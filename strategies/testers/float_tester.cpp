@@ -76,6 +76,14 @@ void coplanarity_times(const Moving& A, const Moving& B, const Moving& C, F&& f,
   }
   if (degenerate) return;
   const double zero = FloatTester::rel_tolerance * f_scale;  // |f| ≈ distance × area: within the tolerance
+  if (!thick) {
+    // Early out: on [0, 1], f is a convex combination of its Bernstein coefficients, so when all four lie
+    // beyond ±zero on one side, f has no root and no touching point — the answer the root search below
+    // would reach (rounding of the coefficients is ~1e-15·f_scale, far inside `zero`).
+    const double b0 = d, b1 = d + c / 3, b2 = d + (2 * c + b) / 3, b3 = d + c + b + a;
+    if ((b0 > zero && b1 > zero && b2 > zero && b3 > zero) || (b0 < -zero && b1 < -zero && b2 < -zero && b3 < -zero))
+      return;
+  }
   TimeList breaks;
   breaks.push_back(0);
   breaks.push_back(1);
