@@ -59,3 +59,23 @@ def test_missing_columns_and_bad_jsonl_are_named(tmp_path):
     (folder / "steps.jsonl").write_text('{"type": "config"}\n{not json\n')
     with pytest.raises(ResultError, match=r"steps.jsonl:2: invalid JSON"):
         load_run(folder)
+
+
+def test_scaling_plot_from_bench_results(tmp_path, capsys):
+    import plot_scaling
+    folder = tmp_path / "bench"
+    folder.mkdir()
+    (folder / "bench.csv").write_text(
+        "scheduler,threads,ms_per_step,speedup,bv_tests_per_step,lambda\n"
+        "sequential,1,100,1,1000,1\nsequential,2,60,1.67,1000,1\nfront,1,90,1.11,600,0.6\nfront,2,46,2.17,600,0.6\n")
+    rows = ["scheduler,cores,predicted_ms_per_step,predicted_speedup,measured_ms_per_step"]
+    for s, base in (("sequential", 100.0), ("front", 90.0)):
+        for n in (1, 2, 4, 8):
+            measured = {1: base, 2: base * 0.55}.get(n, "")
+            rows.append(f"{s},{n},{base / n},{100 / (base / n)},{measured}")
+    (folder / "scaling.csv").write_text("\n".join(rows) + "\n")
+    assert plot_scaling.main([str(folder)]) == 0
+    png = folder / "speedup.png"
+    assert png.is_file() and png.read_bytes()[:4] == b"\x89PNG"
+    assert plot_scaling.main([str(tmp_path / "nothing")]) == 2
+    assert "scaling.csv: not found" in capsys.readouterr().err

@@ -33,7 +33,14 @@ struct Measured {
   std::uint64_t front_max = 0, front_bytes_max = 0, sprouted = 0, pruned = 0, rebuilds = 0;
   double serial_ms = 0, traverse_ms = 0, imbalance_sum = 0;
   int imbalance_n = 0;
-  std::vector<std::vector<PhaseTrace>> traces;  ///< per step, from the first round
+  std::vector<std::vector<std::vector<PhaseTrace>>> traces;  ///< per round, per step
+  /// Traces of the round whose time is the median: the simulator replays a typical run, not an outlier.
+  [[nodiscard]] const std::vector<std::vector<PhaseTrace>>& median_traces() const {
+    std::vector<std::size_t> order(ms_per_step.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return ms_per_step[a] < ms_per_step[b]; });
+    return traces[order[order.size() / 2]];
+  }
 };
 
 std::vector<int> parse_ints(const std::string& list, const char* option) {
@@ -104,6 +111,7 @@ int bench_command(const BenchOptions& o) {
       Measured& m = measured[i];
       double total = 0;
       std::uint64_t hash = contact_set_hash({});
+      m.traces.emplace_back();
       for (int s = 0; s < steps; ++s) {
         StepResult r = pipeline.step(frames[s], frames[s + 1]);
         total += r.timings.total_ms;
@@ -121,8 +129,8 @@ int bench_command(const BenchOptions& o) {
           m.traverse_ms += r.timings.traverse_ms;
           for (const PhaseTrace& t : r.traces)
             if (t.phase == "traverse" && !t.thread_ms.empty()) m.imbalance_sum += imbalance(t), ++m.imbalance_n;
-          m.traces.push_back(std::move(r.traces));
         }
+        m.traces.back().push_back(std::move(r.traces));
       }
       if (round == 0) m.hash = hash;
       else if (hash != m.hash) fail("bench: {} x{} changed its answer between rounds", configs[i].scheduler, configs[i].threads);
@@ -199,7 +207,7 @@ int bench_command(const BenchOptions& o) {
     std::string line = fmt::format("{:>10}", configs[i].scheduler);
     for (int n : cores) {
       double predicted = 0;
-      for (const auto& step_traces : measured[i].traces) predicted += simulate_step(step_traces, n);
+      for (const auto& step_traces : measured[i].median_traces()) predicted += simulate_step(step_traces, n);
       predicted /= steps;
       double measured_ms = -1;
       for (std::size_t j = 0; j < configs.size(); ++j)

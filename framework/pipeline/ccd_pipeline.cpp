@@ -11,8 +11,8 @@ using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return ms_between(t, Clock::now()); }
 
 /// Chunk sizes of the parallel phases: large enough to amortise scheduling, small enough to balance.
-constexpr std::size_t kCandidateChunk = 256;
-constexpr std::size_t kOrphanChunk = 4096;
+constexpr std::size_t kCandidateChunk = 128;
+constexpr std::size_t kOrphanChunk = 2048;
 constexpr std::size_t kFaceChunk = 2048;
 
 }  // namespace

@@ -3,6 +3,14 @@
 #include <chrono>
 
 namespace ccdlab {
+namespace {
+
+/// A run of consecutive front pieces (piece index, node range) processed as one task.
+struct Segment {
+  std::size_t piece, begin, end;
+};
+
+}  // namespace
 
 void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) {
   if (pass.bvh_a->nodes.empty() || pass.bvh_b->nodes.empty()) return;
@@ -10,20 +18,30 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
   PassFront& front = fronts_[pass.id];
   PhaseTrace trace{"traverse", Distribution::dynamic, 0, {}, {}};
   const auto t_serial = Clock::now();
-  const bool grown = params_.rebuild_growth > 0 && front.nodes.size() > params_.rebuild_growth * front.size_after_rebuild;
+  const bool grown = params_.rebuild_growth > 0 && double(front.size) > params_.rebuild_growth * double(front.size_after_rebuild);
   const bool due = params_.rebuild_every > 0 && front.steps_since_rebuild >= params_.rebuild_every;
-  if (front.nodes.empty() || grown || due) {
-    front.nodes = initial_front(*pass.bvh_a, *pass.bvh_b, pass.self);
+  if (front.pieces.empty() || grown || due) {
+    front.pieces.assign(1, initial_front(*pass.bvh_a, *pass.bvh_b, pass.self));
     front.steps_since_rebuild = 0;
     front.size_after_rebuild = 0;
     ++out.stats.rebuilds;
   }
   ++front.steps_since_rebuild;
-  const std::size_t n = front.nodes.size();
+
+  // Tasks: consecutive pieces cut into runs of at most `chunk` nodes.
   const std::size_t chunk = std::size_t(params_.chunk);
-  const std::size_t chunks = (n + chunk - 1) / chunk;
+  std::vector<std::vector<Segment>> tasks;
+  std::size_t filled = chunk;
+  for (std::size_t p = 0; p < front.pieces.size(); ++p)
+    for (std::size_t b = 0; b < front.pieces[p].size();) {
+      if (filled == chunk) tasks.emplace_back(), filled = 0;
+      const std::size_t e = std::min(front.pieces[p].size(), b + (chunk - filled));
+      tasks.back().push_back({p, b, e});
+      filled += e - b;
+      b = e;
+    }
   const int threads = pass.threads;
-  std::vector<PerThread<std::vector<FrontNode>>> pieces(chunks);  // padded: neighbours are written concurrently
+  std::vector<PerThread<std::vector<FrontNode>>> next(tasks.size());  // padded: neighbours written concurrently
   struct Local {
     std::vector<FacePair> pairs;
     std::vector<BvttNode> stack;
@@ -33,24 +51,25 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
   trace.serial_ms += ms_between(t_serial, Clock::now());
 
   with_bvtt_view(pass, [&](const auto& view) {
-    parallel_chunks(n, chunk, threads, trace, [&](std::size_t b, std::size_t e, int tid) {
-      std::vector<FrontNode>& piece = pieces[b / chunk].value;
-      piece.reserve(e - b + 16);
+    parallel_chunks(tasks.size(), 1, threads, trace, [&](std::size_t t, std::size_t, int tid) {
+      std::vector<FrontNode>& piece = next[t].value;
+      piece.reserve(chunk + chunk / 4);
       Local& l = local[tid].value;
-      process_front(view, front.nodes.data() + b, front.nodes.data() + e, params_.prune, piece, l.pairs, l.stack,
-                    l.counters);
+      for (const Segment& s : tasks[t]) {
+        const FrontNode* nodes = front.pieces[s.piece].data();
+        process_front(view, nodes + s.begin, nodes + s.end, params_.prune, piece, l.pairs, l.stack, l.counters);
+      }
     });
   });
 
-  // Concatenate the pieces in chunk order (offsets serial, copies parallel) and merge thread-local results.
   const auto t_merge = Clock::now();
-  std::vector<std::size_t> offset(chunks + 1, 0);
-  for (std::size_t c = 0; c < chunks; ++c) offset[c + 1] = offset[c] + pieces[c].value.size();
-  front.nodes.resize(offset[chunks]);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (std::ptrdiff_t c = 0; c < std::ptrdiff_t(chunks); ++c)
-    std::copy(pieces[c].value.begin(), pieces[c].value.end(), front.nodes.begin() + std::ptrdiff_t(offset[c]));
-  if (front.size_after_rebuild == 0) front.size_after_rebuild = front.nodes.size();
+  front.pieces.resize(next.size());
+  front.size = 0;
+  for (std::size_t t = 0; t < next.size(); ++t) {
+    front.pieces[t] = std::move(next[t].value);
+    front.size += front.pieces[t].size();
+  }
+  if (front.size_after_rebuild == 0) front.size_after_rebuild = front.size;
   for (int t = 0; t < threads; ++t) {
     const Local& l = local[t].value;
     out.pairs.insert(out.pairs.end(), l.pairs.begin(), l.pairs.end());
@@ -59,19 +78,20 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
     out.stats.sprouted += l.counters.sprouted;
     out.stats.pruned += l.counters.pruned;
   }
-  out.stats.tasks += chunks;
-  out.stats.front_nodes += front.nodes.size();
-  out.stats.front_bytes += front.nodes.size() * sizeof(FrontNode);
-  const double merge_ms = ms_between(t_merge, Clock::now());
-  trace.serial_ms += merge_ms;
+  out.stats.tasks += tasks.size();
+  out.stats.front_nodes += front.size;
+  out.stats.front_bytes += front.size * sizeof(FrontNode) + front.pieces.size() * sizeof(std::vector<FrontNode>);
+  trace.serial_ms += ms_between(t_merge, Clock::now());
   out.stats.serial_ms += trace.serial_ms;
   traces.push_back(std::move(trace));
 }
 
-const std::vector<FrontNode>& FrontScheduler::front(int pass_id) const {
-  static const std::vector<FrontNode> none;
+std::vector<FrontNode> FrontScheduler::front(int pass_id) const {
+  std::vector<FrontNode> all;
   auto it = fronts_.find(pass_id);
-  return it == fronts_.end() ? none : it->second.nodes;
+  if (it != fronts_.end())
+    for (const auto& piece : it->second.pieces) all.insert(all.end(), piece.begin(), piece.end());
+  return all;
 }
 
 }  // namespace ccdlab

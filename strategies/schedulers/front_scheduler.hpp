@@ -3,8 +3,9 @@
 // bvtt_front.hpp). The front of each pass is kept across steps; each step its nodes are processed in parallel,
 // in fixed-size chunks handed out dynamically, so the first traversal from the root (the serial top of `phc`)
 // disappears after the first step and the BV tests above the front are not repeated (the paper's λ).
-// Chunk outputs are concatenated in chunk order, so the front — and the work — does not depend on the thread
-// count.
+// The front is stored as a list of pieces in traversal order; each task takes a run of consecutive pieces
+// holding at most `chunk` nodes and writes one new piece, so nothing is copied between steps and the front —
+// and the work — does not depend on the thread count.
 #include <map>
 
 #include "framework/traversal/bvtt_front.hpp"
@@ -24,12 +25,13 @@ class FrontScheduler final : public TraversalScheduler {
   explicit FrontScheduler(Params p) : params_(p) {}
   [[nodiscard]] std::string_view name() const override { return "front"; }
   void collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) override;
-  /// The current front of a pass (empty before its first step) — for tests and reports.
-  [[nodiscard]] const std::vector<FrontNode>& front(int pass_id) const;
+  /// The current front of a pass, concatenated (empty before its first step) — for tests and reports.
+  [[nodiscard]] std::vector<FrontNode> front(int pass_id) const;
 
  private:
   struct PassFront {
-    std::vector<FrontNode> nodes;
+    std::vector<std::vector<FrontNode>> pieces;
+    std::size_t size = 0;
     std::size_t size_after_rebuild = 0;
     int steps_since_rebuild = 0;
   };

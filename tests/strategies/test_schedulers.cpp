@@ -131,7 +131,7 @@ TEST(FrontScheduler, FrontCoversEveryNonAdjacentLeafPairExactlyOnceAndShrinksWhe
     std::vector<std::size_t> sizes;
     for (std::size_t i = 0; i + 1 < gaps.size(); ++i) {
       StepResult r = p.step(frame(gaps[i]), frame(gaps[i + 1]));
-      const auto cover = coverage(p.bvh(0), front->front(0));
+      const auto cover = coverage(p.bvh(0), front->front(0));  // a copy, concatenated
       for (Index a = 0; a < mesh.num_faces(); ++a)
         for (Index b = a + 1; b < mesh.num_faces(); ++b) {
           auto it = cover.find({a, b});
