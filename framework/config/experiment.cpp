@@ -107,7 +107,7 @@ ExperimentConfig load_experiment(const std::string& path, const std::vector<std:
   std::set<std::string> overridden;
   for (const auto& o : overrides) overridden.insert(apply_override(root, o));
   YamlReader r(path, overridden);
-  r.check_keys(root, "", {"name", "scene", "bv", "hierarchy", "scheduler", "threads", "tester", "output"});
+  r.check_keys(root, "", {"name", "scene", "bv", "hierarchy", "restructure", "scheduler", "threads", "tester", "output"});
 
   ExperimentConfig c;
   c.source = path;
@@ -128,6 +128,14 @@ ExperimentConfig load_experiment(const std::string& path, const std::vector<std:
   c.hierarchy = strategy("hierarchy", reg.builders, c.hierarchy.name);
   c.scheduler = strategy("scheduler", reg.schedulers, c.scheduler.name);
   c.tester = strategy("tester", reg.testers, c.tester.name);
+  if (const YAML::Node rs = root["restructure"]) {
+    r.check_keys(rs, "restructure", {"threshold"});
+    if (rs["threshold"]) {
+      c.restructure_threshold = r.real(rs["threshold"], "restructure.threshold", 0, 1e9);
+      if (c.restructure_threshold != 0 && c.restructure_threshold < 1)
+        r.error(rs["threshold"], "restructure.threshold", "0 (off) or a number >= 1");
+    }
+  }
   if (root["threads"]) c.threads = int(r.integer(root["threads"], "threads", 1, 1024));
   c.output.dir = "results/" + c.name;
   if (const YAML::Node o = root["output"]) {
@@ -153,6 +161,7 @@ nlohmann::json to_json(const ExperimentConfig& c) {
   }
   j["bv"] = {{"k", c.k}};
   j["hierarchy"] = params_json(c.hierarchy);
+  j["restructure"] = {{"threshold", c.restructure_threshold}};
   j["scheduler"] = params_json(c.scheduler);
   j["threads"] = c.threads;
   j["tester"] = params_json(c.tester);
@@ -175,6 +184,7 @@ PipelineStrategies make_strategies(const ExperimentConfig& c, const Registries& 
   PipelineStrategies s;
   s.k = c.k;
   s.threads = c.threads;
+  s.restructure_threshold = c.restructure_threshold;
   s.builder = reg.builders.make(c.hierarchy);
   s.scheduler = reg.schedulers.make(c.scheduler);
   s.tester = reg.testers.make(c.tester);

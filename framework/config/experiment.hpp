@@ -1,7 +1,8 @@
 #pragma once
 // The experiment config: YAML → typed structs, in this one place. Every key is validated; an unknown key or
 // a bad value is an Error "file:line: key: expected …, got …". Top-level keys:
-//   name, scene, bv {k}, hierarchy, scheduler, threads, tester, output {dir, csv, jsonl, contacts}
+//   name, scene, bv {k}, hierarchy, restructure {threshold}, scheduler, threads, tester,
+//   output {dir, csv, jsonl, contacts}
 // Strategies (hierarchy, scheduler, tester, built-in scenes) are a name or a map {name: …, param: …},
 // validated against the registries (see docs/config.md).
 #include <memory>
@@ -55,6 +56,7 @@ struct ExperimentConfig {
   StrategyChoice scheduler{"sequential", {}};
   int threads = 1;
   StrategyChoice tester{"float", {}};
+  double restructure_threshold = 0;  ///< restructure: {threshold: …}; 0 = off
   OutputConfig output;
 };
 

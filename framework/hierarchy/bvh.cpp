@@ -40,4 +40,25 @@ void validate_bvh(const BvhTopology& bvh, std::span<const Index> faces) {
     if (seen_face[f] != 1) fail("bvh: face {} appears in {} leaves", f, seen_face[f]);
 }
 
+void replace_subtree(BvhTopology& bvh, Index root, const BvhTopology& sub) {
+  const Index size = 2 * bvh.leaf_count[root] - 1;
+  if (sub.size() != size) fail("bvh: replacement sub-tree has {} nodes, expected {}", sub.size(), size);
+  const Index parent = bvh.nodes[root].parent;
+  for (Index i = 0; i < size; ++i) {
+    BvhNode n = sub.nodes[i];
+    if (!n.is_leaf()) n.left += root, n.right += root;
+    n.parent = i == 0 ? parent : n.parent + root;
+    bvh.nodes[root + i] = n;
+    bvh.leaf_count[root + i] = sub.leaf_count[i];
+  }
+  ++bvh.version;
+}
+
+std::vector<Index> subtree_faces(const BvhTopology& bvh, Index root) {
+  std::vector<Index> faces;
+  for (Index i = root; i < root + 2 * bvh.leaf_count[root] - 1; ++i)
+    if (bvh.nodes[i].is_leaf()) faces.push_back(bvh.nodes[i].face);
+  return faces;
+}
+
 }  // namespace ccdlab

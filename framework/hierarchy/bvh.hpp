@@ -28,6 +28,7 @@ static_assert(sizeof(BvhNode) == 16, "BvhNode is 4 indices; keep it compact for 
 struct BvhTopology {
   std::vector<BvhNode> nodes;  ///< pre-order, nodes[0] = root; 2·leaves − 1 nodes
   std::vector<Index> leaf_count;  ///< number of leaves under each node
+  std::uint64_t version = 0;      ///< bumped whenever the topology changes (adaptive restructuring)
 
   [[nodiscard]] Index size() const { return Index(nodes.size()); }
   [[nodiscard]] Index num_leaves() const { return (size() + 1) / 2; }
@@ -48,6 +49,13 @@ void validate_bvh(const BvhTopology& bvh, std::span<const Index> faces);
 
 /// Fills leaf_count bottom-up from the node links.
 void compute_leaf_counts(BvhTopology& bvh);
+
+/// Replaces the sub-tree rooted at `root` by `sub` (a tree over the same faces, pre-order from 0): a pre-order
+/// sub-tree is the contiguous range [root, root + 2·leaves − 1), so every node outside keeps its id.
+void replace_subtree(BvhTopology& bvh, Index root, const BvhTopology& sub);
+
+/// Faces under a node (pre-order range scan).
+std::vector<Index> subtree_faces(const BvhTopology& bvh, Index root);
 
 /// Bottom-up refit: leaves take leaf_bv(face), inner nodes the merge of their children.
 template <class BV, class LeafBv>

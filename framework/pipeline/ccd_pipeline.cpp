@@ -111,8 +111,94 @@ void CcdPipeline::build_hierarchies(const Positions& x_t0, const Positions& x_t1
     }
     body.refit_subtrees = std::move(level);
     std::sort(body.refit_top.rbegin(), body.refit_top.rend());
+    // Restructuring units, independent of the thread count.
+    body.restructure_roots.clear();
+    const Index max_leaves = std::max<Index>(64, body.bvh.num_leaves() / 64);
+    std::vector<Index> stack{0};
+    while (!stack.empty()) {
+      const Index n = stack.back();
+      stack.pop_back();
+      if (body.bvh.leaf_count[n] <= max_leaves) {
+        if (body.bvh.leaf_count[n] > 2) body.restructure_roots.push_back(n);
+      } else {
+        stack.push_back(body.bvh.nodes[n].right);
+        stack.push_back(body.bvh.nodes[n].left);
+      }
+    }
+    body.quality_ref.assign(body.restructure_roots.size(), 0.0);  // set after the first refit
   }
   built_ = true;
+}
+
+namespace {
+
+/// Σ size of the inner nodes of a sub-tree ÷ size of its root: grows when refit lets siblings overlap.
+template <class Vec>
+double subtree_quality(const BvhTopology& bvh, const Vec& bvs, Index root) {
+  const double root_size = bvs[root].size_measure();
+  if (!(root_size > 0)) return 0;
+  double sum = 0;
+  for (Index i = root; i < root + 2 * bvh.leaf_count[root] - 1; ++i)
+    if (!bvh.nodes[i].is_leaf()) sum += bvs[i].size_measure();
+  return sum / root_size;
+}
+
+}  // namespace
+
+std::uint64_t CcdPipeline::restructure(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace) {
+  std::uint64_t rebuilt = 0;
+  for (BodyState& body : bodies_) {
+    std::visit(
+        [&](auto& node_bvs) {
+          using Vec = std::decay_t<decltype(node_bvs)>;
+          const Vec& leaf = std::get<Vec>(face_bvs_);
+          BvhTopology& bvh = body.bvh;
+          const std::size_t units = body.restructure_roots.size();
+          std::vector<char> degraded(units, 0);
+          std::vector<BvhTopology> replacement(units);
+          PhaseTrace part;
+          parallel_chunks(units, 1, strategies_.threads, part, [&](std::size_t u, std::size_t, int) {
+            const Index r = body.restructure_roots[u];
+            const double q = subtree_quality(bvh, node_bvs, r);
+            if (body.quality_ref[u] == 0) {
+              body.quality_ref[u] = q;  // first refit after a (re)build
+              return;
+            }
+            if (q <= strategies_.restructure_threshold * body.quality_ref[u]) return;
+            // Degraded: rebuild this sub-tree over its faces from their current swept boxes.
+            std::vector<Index> faces = subtree_faces(bvh, r);
+            std::vector<Box3> boxes(faces.size());
+            for (std::size_t i = 0; i < faces.size(); ++i)
+              for (Index v : mesh_.face(faces[i])) {
+                boxes[i].grow(x_t0[v]);
+                boxes[i].grow(x_t1[v]);
+              }
+            replacement[u] = strategies_.builder->build(faces, boxes);
+            degraded[u] = 1;
+          });
+          trace.task_ms.insert(trace.task_ms.end(), part.task_ms.begin(), part.task_ms.end());
+          const auto t0 = Clock::now();
+          for (std::size_t u = 0; u < units; ++u) {
+            if (!degraded[u]) continue;
+            const Index r = body.restructure_roots[u];
+            replace_subtree(bvh, r, replacement[u]);
+            for (Index i = r + 2 * bvh.leaf_count[r] - 2; i >= r; --i) {
+              const BvhNode& n = bvh.nodes[i];
+              if (n.is_leaf()) node_bvs[i] = leaf[n.face];
+              else node_bvs[i] = node_bvs[n.left], node_bvs[i].merge(node_bvs[n.right]);
+            }
+            for (Index p = bvh.nodes[r].parent; p >= 0; p = bvh.nodes[p].parent) {
+              node_bvs[p] = node_bvs[bvh.nodes[p].left];
+              node_bvs[p].merge(node_bvs[bvh.nodes[p].right]);
+            }
+            body.quality_ref[u] = subtree_quality(bvh, node_bvs, r);
+            ++rebuilt;
+          }
+          trace.serial_ms += ms_since(t0);
+        },
+        body.node_bvs);
+  }
+  return rebuilt;
 }
 
 void CcdPipeline::refit_body(BodyState& body, PhaseTrace& trace) {
@@ -209,6 +295,11 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   for (BodyState& body : bodies_) {
     PhaseTrace trace{"refit", Distribution::dynamic, 0, {}, {}};
     refit_body(body, trace);
+    result.traces.push_back(std::move(trace));
+  }
+  if (strategies_.restructure_threshold > 0) {
+    PhaseTrace trace{"restructure", Distribution::dynamic, 0, {}, {}};
+    c.restructured = restructure(x_t0, x_t1, trace);
     result.traces.push_back(std::move(trace));
   }
   tm.refit_ms = ms_since(t);

@@ -20,6 +20,9 @@ namespace ccdlab {
 struct PipelineStrategies {
   int k = 18;  ///< k-DOP: 6, 14, 18 or 26
   int threads = 1;  ///< OpenMP threads for every stage
+  /// Adaptive restructuring: rebuild a sub-tree when its quality (Σ sizes of inner nodes ÷ size of its root)
+  /// exceeds this × its value at the last (re)build. 0 = off.
+  double restructure_threshold = 0;
   std::unique_ptr<HierarchyBuilder> builder;
   std::unique_ptr<TraversalScheduler> scheduler;
   std::unique_ptr<PrimitiveTester> tester;
@@ -60,7 +63,12 @@ class CcdPipeline {
     // nodes above them, bottom-up.
     std::vector<Index> refit_subtrees;
     std::vector<Index> refit_top;  ///< in decreasing index order
+    // Adaptive restructuring units: disjoint sub-trees of ≤ max(64, n/64) leaves, and their reference quality.
+    std::vector<Index> restructure_roots;
+    std::vector<double> quality_ref;
   };
+  /// Rebuilds the degraded sub-trees of every body; returns how many were rebuilt.
+  std::uint64_t restructure(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
   void build_hierarchies(const Positions& x_t0, const Positions& x_t1);
   void refit_body(BodyState& body, PhaseTrace& trace);
   template <class Pairs, class TestOne>

@@ -20,6 +20,7 @@ struct StepCounters {
   std::uint64_t vf_tests = 0;         ///< elementary VF tests run (feature boxes overlapped)
   std::uint64_t ee_tests = 0;         ///< elementary EE tests run
   std::uint64_t orphan_tests = 0;     ///< of the VF + EE tests, those from the orphan set
+  std::uint64_t restructured = 0;     ///< BVH sub-trees rebuilt by adaptive restructuring
   std::uint64_t contacts_vf = 0;
   std::uint64_t contacts_ee = 0;
 };
@@ -28,7 +29,7 @@ struct StepCounters {
 struct StepTimings {
   double build_ms = 0;      ///< top-down BVH build: first step only, 0 afterwards
   double swept_bv_ms = 0;   ///< swept k-DOP of every face
-  double refit_ms = 0;      ///< bottom-up refit
+  double refit_ms = 0;      ///< bottom-up refit (and adaptive restructuring, when on)
   double traverse_ms = 0;   ///< BVTT traversal → candidate face pairs
   double narrow_ms = 0;     ///< feature pairs of candidates → elementary tests
   double orphan_ms = 0;     ///< orphan set → elementary tests

@@ -20,7 +20,10 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
   const auto t_serial = Clock::now();
   const bool grown = params_.rebuild_growth > 0 && double(front.size) > params_.rebuild_growth * double(front.size_after_rebuild);
   const bool due = params_.rebuild_every > 0 && front.steps_since_rebuild >= params_.rebuild_every;
-  if (front.pieces.empty() || grown || due) {
+  // Adaptive restructuring changed which leaves a node covers: the front must restart (its rebuild policy).
+  const std::uint64_t version = pass.bvh_a->version + (pass.self ? 0 : pass.bvh_b->version);
+  if (front.pieces.empty() || grown || due || version != front.bvh_version) {
+    front.bvh_version = version;
     front.pieces.assign(1, initial_front(*pass.bvh_a, *pass.bvh_b, pass.self));
     front.steps_since_rebuild = 0;
     front.size_after_rebuild = 0;

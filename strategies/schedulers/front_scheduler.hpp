@@ -33,6 +33,7 @@ class FrontScheduler final : public TraversalScheduler {
     std::vector<std::vector<FrontNode>> pieces;
     std::size_t size = 0;
     std::size_t size_after_rebuild = 0;
+    std::uint64_t bvh_version = 0;  ///< of the BVHs it was built on: a restructured BVH invalidates the front
     int steps_since_rebuild = 0;
   };
   Params params_{};
