@@ -7,6 +7,7 @@
 // bench.jsonl to output.dir.
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include <unistd.h>
 
@@ -224,6 +225,31 @@ int bench_command(const BenchOptions& o) {
     if (!o.json) fmt::print("{}\n", line);
   }
   jsonl << nlohmann::json{{"type", "scaling"}, {"rows", sim_rows}}.dump() << "\n";
+
+  // Where scaling stops: per phase, ms/step on 1 core and on the largest simulated core count ≤ 8 (or the max).
+  int probe = cores.front();
+  for (int n : cores)
+    if (n <= 8) probe = std::max(probe, n);
+  if (!o.json) fmt::print("\nper phase, ms/step at 1 core -> {} simulated cores (serial part):\n", probe);
+  for (std::size_t i = 0; i < configs.size(); ++i) {
+    if (configs[i].threads != 1) continue;
+    std::map<std::string, std::array<double, 3>> phases;  // 1 core, N cores, serial
+    for (const auto& step_traces : measured[i].median_traces())
+      for (const PhaseTrace& t : step_traces) {
+        auto& acc = phases[t.phase];
+        acc[0] += simulate_phase(t, 1) / steps;
+        acc[1] += simulate_phase(t, probe) / steps;
+        acc[2] += t.serial_ms / steps;
+      }
+    nlohmann::json row = {{"type", "phases"}, {"scheduler", configs[i].scheduler}, {"cores", probe}};
+    std::string line = fmt::format("{:>10}", configs[i].scheduler);
+    for (const auto& [name, acc] : phases) {
+      row["phases"][name] = {{"ms_1", acc[0]}, {"ms_n", acc[1]}, {"serial_ms", acc[2]}};
+      line += fmt::format(" | {} {:.1f}->{:.1f} ({:.1f})", name, acc[0], acc[1], acc[2]);
+    }
+    jsonl << row.dump() << "\n";
+    if (!o.json) fmt::print("{}\n", line);
+  }
   if (o.json)
     fmt::print("{}\n", nlohmann::json{{"configs", out_rows}, {"scaling", sim_rows}, {"identical", identical},
                                       {"reference_ms_per_step", ref_ms}, {"steps", steps}, {"git_revision", rev}}

@@ -88,12 +88,13 @@ void CcdPipeline::build_hierarchies(const Positions& x_t0, const Positions& x_t1
         boxes[i].grow(x_t1[v]);
       }
     body.bvh = strategies_.builder->build(body.faces, boxes);
-    // Cut the tree into ≥ 8·threads disjoint sub-trees (level by level) for the parallel refit.
+    // Cut the tree into disjoint sub-trees (level by level) for the parallel refit.
     body.refit_subtrees.clear();
     body.refit_top.clear();
     if (body.bvh.nodes.empty()) continue;
     std::vector<Index> level{0};
-    const std::size_t want = strategies_.threads > 1 ? 8 * std::size_t(strategies_.threads) : 1;
+    // A fixed number of sub-trees, whatever the thread count: the work (and its trace) does not depend on it.
+    constexpr std::size_t want = 256;
     while (level.size() < want) {
       std::vector<Index> next;
       for (Index n : level) {
