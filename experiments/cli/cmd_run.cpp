@@ -67,7 +67,7 @@ int run_command(const RunOptions& o) {
   // When the table rows go to the same terminal they are the progress; otherwise show a progress line.
   const bool table_on_terminal = !o.json && isatty(STDOUT_FILENO);
   Progress progress("ccdlab run", scene.num_steps(), o.progress && Progress::stderr_is_terminal() && !table_on_terminal);
-  std::vector<double> total_ms, build_ms, swept_ms, refit_ms, traverse_ms, narrow_ms, orphan_ms;
+  std::vector<double> total_ms, build_ms, cones_ms, swept_ms, refit_ms, traverse_ms, narrow_ms, orphan_ms;
   std::uint64_t hash = contact_set_hash({}), vf = 0, ee = 0, bv_tests = 0, candidates = 0, vf_tests = 0, ee_tests = 0, orphan_pairs = 0, orphan_tests = 0;
   Positions x_t0 = scene.frame(0);
   for (int s = 0; s < scene.num_steps(); ++s) {
@@ -85,6 +85,7 @@ int run_command(const RunOptions& o) {
     orphan_tests += r.counters.orphan_tests;
     total_ms.push_back(r.timings.total_ms);
     build_ms.push_back(r.timings.build_ms);
+    cones_ms.push_back(r.timings.cones_ms);
     swept_ms.push_back(r.timings.swept_bv_ms);
     refit_ms.push_back(r.timings.refit_ms);
     traverse_ms.push_back(r.timings.traverse_ms);
@@ -118,6 +119,7 @@ int run_command(const RunOptions& o) {
        {{"build_once", build_ms.front()},
         {"swept_bv", median(swept_ms)},
         {"refit", median(refit_ms)},
+        {"normal_cones", median(cones_ms)},
         {"traverse", median(traverse_ms)},
         {"narrow", median(narrow_ms)},
         {"orphans", median(orphan_ms)}}},

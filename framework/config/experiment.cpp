@@ -107,7 +107,8 @@ ExperimentConfig load_experiment(const std::string& path, const std::vector<std:
   std::set<std::string> overridden;
   for (const auto& o : overrides) overridden.insert(apply_override(root, o));
   YamlReader r(path, overridden);
-  r.check_keys(root, "", {"name", "scene", "bv", "hierarchy", "restructure", "scheduler", "threads", "tester", "output"});
+  r.check_keys(root, "", {"name", "scene", "bv", "hierarchy", "restructure", "normal_cones", "scheduler", "threads", "tester",
+                   "output"});
 
   ExperimentConfig c;
   c.source = path;
@@ -136,6 +137,7 @@ ExperimentConfig load_experiment(const std::string& path, const std::vector<std:
         r.error(rs["threshold"], "restructure.threshold", "0 (off) or a number >= 1");
     }
   }
+  if (root["normal_cones"]) c.normal_cones = r.boolean(root["normal_cones"], "normal_cones");
   if (root["threads"]) c.threads = int(r.integer(root["threads"], "threads", 1, 1024));
   c.output.dir = "results/" + c.name;
   if (const YAML::Node o = root["output"]) {
@@ -162,6 +164,7 @@ nlohmann::json to_json(const ExperimentConfig& c) {
   j["bv"] = {{"k", c.k}};
   j["hierarchy"] = params_json(c.hierarchy);
   j["restructure"] = {{"threshold", c.restructure_threshold}};
+  j["normal_cones"] = c.normal_cones;
   j["scheduler"] = params_json(c.scheduler);
   j["threads"] = c.threads;
   j["tester"] = params_json(c.tester);
@@ -185,6 +188,7 @@ PipelineStrategies make_strategies(const ExperimentConfig& c, const Registries& 
   s.k = c.k;
   s.threads = c.threads;
   s.restructure_threshold = c.restructure_threshold;
+  s.normal_cones = c.normal_cones;
   s.builder = reg.builders.make(c.hierarchy);
   s.scheduler = reg.schedulers.make(c.scheduler);
   s.tester = reg.testers.make(c.tester);

@@ -1,7 +1,7 @@
 #pragma once
 // The experiment config: YAML → typed structs, in this one place. Every key is validated; an unknown key or
 // a bad value is an Error "file:line: key: expected …, got …". Top-level keys:
-//   name, scene, bv {k}, hierarchy, restructure {threshold}, scheduler, threads, tester,
+//   name, scene, bv {k}, hierarchy, restructure {threshold}, normal_cones, scheduler, threads, tester,
 //   output {dir, csv, jsonl, contacts}
 // Strategies (hierarchy, scheduler, tester, built-in scenes) are a name or a map {name: …, param: …},
 // validated against the registries (see docs/config.md).
@@ -57,6 +57,7 @@ struct ExperimentConfig {
   int threads = 1;
   StrategyChoice tester{"float", {}};
   double restructure_threshold = 0;  ///< restructure: {threshold: …}; 0 = off
+  bool normal_cones = false;         ///< normal_cones: true — continuous normal-cone culling of self tests
   OutputConfig output;
 };
 

@@ -54,6 +54,9 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
       narrow_(mesh_, owners_, *strategies_.tester),
       face_bvs_(make_bvs(strategies_.k)) {
   if (strategies_.threads < 1) fail("threads: expected an integer >= 1, got {}", strategies_.threads);
+  if (strategies_.normal_cones && strategies_.tester->thickness() > 0)
+    fail("normal_cones: culling is exact only for contact at zero distance; got tester thickness {}",
+         strategies_.tester->thickness());
   orphans_ = build_orphan_set(mesh_, owners_, [this](Index f) {
     int b = rules_.body_of_face(f);
     return rules_.bodies_interact(b, b);
@@ -69,7 +72,7 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
   for (int i = 0; i < int(bl.size()); ++i)
     if (rules_.bodies_interact(i, i) && !bodies_[i].faces.empty())
       passes_.push_back({int(passes_.size()), &mesh_, &bodies_[i].bvh, &bodies_[i].node_bvs, &bodies_[i].bvh,
-                         &bodies_[i].node_bvs, true, threads});
+                         &bodies_[i].node_bvs, true, threads, strategies_.normal_cones ? &bodies_[i].skip_root : nullptr});
   for (int i = 0; i < int(bl.size()); ++i)
     for (int j = i + 1; j < int(bl.size()); ++j)
       if (rules_.bodies_interact(i, j) && !bodies_[i].faces.empty() && !bodies_[j].faces.empty())
@@ -304,14 +307,43 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
     result.traces.push_back(std::move(trace));
   }
   tm.refit_ms = ms_since(t);
+  if (strategies_.normal_cones) {
+    // Parallel loops inside; recorded as serial (an upper bound for the simulator).
+    const auto tc = Clock::now();
+    double cones_build_ms = 0;
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      BodyState& body = bodies_[b];
+      if (!rules_.bodies_interact(int(b), int(b)) || body.bvh.nodes.empty()) continue;
+      if (!body.cones || body.cones_version != body.bvh.version) {
+        // One-time topology analysis (which patches are disks): build time, like the BVH's.
+        const auto tb = Clock::now();
+        body.cones = std::make_unique<NormalConeCuller>(mesh_, body.bvh);
+        body.cones_version = body.bvh.version;
+        const double ms = ms_since(tb);
+        tm.build_ms += ms;
+        cones_build_ms += ms;
+      }
+      result.traversal.cone_culled += body.cones->update(x_t0, x_t1, threads);
+      result.traversal.contour_edges += body.cones->contour_edge_tests();
+      body.skip_root = body.cones->skip_root();
+    }
+    tm.cones_ms = ms_since(tc) - cones_build_ms;
+    result.traces.push_back(PhaseTrace{"normal_cones", Distribution::dynamic, tm.cones_ms, {}, {}});
+    if (cones_build_ms > 0) result.traces.push_back(PhaseTrace{"build", Distribution::dynamic, cones_build_ms, {}, {}});
+  }
 
   t = Clock::now();
   candidates_.clear();
   for (const TraversalPass& pass : passes_) strategies_.scheduler->collect(pass, candidates_, result.traces);
   c.bv_tests = candidates_.bv_tests;
   c.candidate_pairs = candidates_.pairs.size();
-  result.traversal = candidates_.stats;
-  result.traversal.bv_tests = candidates_.bv_tests;
+  {
+    const std::uint64_t culled = result.traversal.cone_culled, edges = result.traversal.contour_edges;
+    result.traversal = candidates_.stats;
+    result.traversal.bv_tests = candidates_.bv_tests;
+    result.traversal.cone_culled = culled;
+    result.traversal.contour_edges = edges;
+  }
   tm.traverse_ms = ms_since(t);
 
   t = Clock::now();

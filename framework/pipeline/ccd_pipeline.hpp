@@ -13,6 +13,7 @@
 #include "framework/primitive/feature_pairs.hpp"
 #include "framework/primitive/narrow_phase.hpp"
 #include "framework/primitive/tester.hpp"
+#include "framework/traversal/normal_cones.hpp"
 #include "framework/traversal/scheduler.hpp"
 
 namespace ccdlab {
@@ -23,6 +24,8 @@ struct PipelineStrategies {
   /// Adaptive restructuring: rebuild a sub-tree when its quality (Σ sizes of inner nodes ÷ size of its root)
   /// exceeds this × its value at the last (re)build. 0 = off.
   double restructure_threshold = 0;
+  /// Continuous normal-cone culling of self tests (framework/traversal/normal_cones.hpp); thickness 0 only.
+  bool normal_cones = false;
   std::unique_ptr<HierarchyBuilder> builder;
   std::unique_ptr<TraversalScheduler> scheduler;
   std::unique_ptr<PrimitiveTester> tester;
@@ -66,6 +69,9 @@ class CcdPipeline {
     // Adaptive restructuring units: disjoint sub-trees of ≤ max(64, n/64) leaves, and their reference quality.
     std::vector<Index> restructure_roots;
     std::vector<double> quality_ref;
+    std::unique_ptr<NormalConeCuller> cones;  ///< when normal_cones is on (rebuilt with the topology)
+    std::vector<Index> skip_root;             ///< this step's culling, read by the self pass
+    std::uint64_t cones_version = ~0ull;
   };
   /// Rebuilds the degraded sub-trees of every body; returns how many were rebuilt.
   std::uint64_t restructure(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);

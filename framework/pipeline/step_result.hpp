@@ -30,6 +30,7 @@ struct StepTimings {
   double build_ms = 0;      ///< top-down BVH build: first step only, 0 afterwards
   double swept_bv_ms = 0;   ///< swept k-DOP of every face
   double refit_ms = 0;      ///< bottom-up refit (and adaptive restructuring, when on)
+  double cones_ms = 0;      ///< normal-cone culling: cones, contour tests (when on)
   double traverse_ms = 0;   ///< BVTT traversal → candidate face pairs
   double narrow_ms = 0;     ///< feature pairs of candidates → elementary tests
   double orphan_ms = 0;     ///< orphan set → elementary tests

@@ -28,6 +28,15 @@ struct BvttView {
   const std::vector<BV>* bv_b;
   const TriMesh* mesh;
   bool self;  ///< self-collision: skip adjacent face pairs
+  /// Normal-cone culling (self passes): topmost ancestor-or-self of each node whose self test is skipped this
+  /// step, −1 if none; nullptr when culling is off. See normal_cones.hpp.
+  const Index* skip_root = nullptr;
+  /// Is (a, b) a pair node inside a patch whose self test is skipped?
+  [[nodiscard]] bool in_skipped_patch(Index a, Index b) const {
+    if (!skip_root) return false;
+    const Index q = skip_root[a];
+    return q >= 0 && b >= q && b < q + 2 * bvh_a->leaf_count[q] - 1;
+  }
 };
 
 /// Depth-first traversal of the BVTT below `start`, appending candidate face pairs (ordered min, max for
@@ -46,7 +55,7 @@ void traverse_bvtt(const BvttView<BV>& v, BvttNode start, std::vector<BvttNode>&
     stack.pop_back();
     const BvhNode& A = na[n.a];
     if (v.self && n.a == n.b) {
-      if (A.is_leaf()) continue;
+      if (A.is_leaf() || (v.skip_root && v.skip_root[n.a] >= 0)) continue;
       stack.push_back({A.left, A.right});
       stack.push_back({A.right, A.right});
       stack.push_back({A.left, A.left});

@@ -91,6 +91,11 @@ void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNod
     }
   };
   for (const FrontNode* f = begin; f != end; ++f) {
+    if (v.in_skipped_patch(f->a, f->b)) {
+      // Inside a patch that cannot touch itself this step: kept, untested, and not merged this step.
+      next.push_back(FrontNode{f->a, f->b, std::uint8_t(f->flags | FrontNode::kFresh)});
+      continue;
+    }
     ++c.visited;
     ++c.bv_tests;
     const BvhNode& A = na[f->a];

@@ -23,7 +23,7 @@ std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t wa
     for (BvttNode n : level) {
       const BvhNode& A = na[n.a];
       if (v.self && n.a == n.b) {
-        if (A.is_leaf()) continue;
+        if (A.is_leaf() || (v.skip_root && v.skip_root[n.a] >= 0)) continue;
         next.push_back({A.left, A.left});
         next.push_back({A.right, A.right});
         next.push_back({A.left, A.right});

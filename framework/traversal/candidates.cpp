@@ -12,6 +12,8 @@ void TraversalStats::add(const TraversalStats& o) {
   sprouted += o.sprouted;
   pruned += o.pruned;
   rebuilds += o.rebuilds;
+  cone_culled += o.cone_culled;
+  contour_edges += o.contour_edges;
 }
 
 }  // namespace ccdlab

@@ -26,6 +26,8 @@ struct TraversalStats {
   std::uint64_t sprouted = 0;         ///< front nodes that overlapped and descended
   std::uint64_t pruned = 0;           ///< sibling pairs collapsed back into their parent
   std::uint64_t rebuilds = 0;         ///< fronts rebuilt from the root this step
+  std::uint64_t cone_culled = 0;      ///< self tests skipped by normal-cone culling (topmost nodes)
+  std::uint64_t contour_edges = 0;    ///< boundary edges tested by the contour test
 
   void add(const TraversalStats& o);
 };

@@ -29,6 +29,7 @@ struct TraversalPass {
   const AnyBvs* bvs_b = nullptr;
   bool self = true;
   int threads = 1;  ///< OpenMP threads the scheduler may use
+  const std::vector<Index>* skip_root = nullptr;  ///< normal-cone culling of self tests (self passes), or none
 };
 
 /// Calls f(BvttView<BV>) with the pass's volumes at their static type: the one place a scheduler dispatches on K.
@@ -38,7 +39,8 @@ void with_bvtt_view(const TraversalPass& pass, F&& f) {
       [&](const auto& bvs_a) {
         using BV = typename std::decay_t<decltype(bvs_a)>::value_type;
         const auto& bvs_b = std::get<std::vector<BV>>(*pass.bvs_b);
-        f(BvttView<BV>{pass.bvh_a, &bvs_a, pass.bvh_b, &bvs_b, pass.mesh, pass.self});
+        const Index* skip = pass.skip_root && !pass.skip_root->empty() ? pass.skip_root->data() : nullptr;
+        f(BvttView<BV>{pass.bvh_a, &bvs_a, pass.bvh_b, &bvs_b, pass.mesh, pass.self, skip});
       },
       *pass.bvs_a);
 }
