@@ -308,8 +308,8 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   }
   tm.refit_ms = ms_since(t);
   if (strategies_.normal_cones) {
-    // Parallel loops inside; recorded as serial (an upper bound for the simulator).
     const auto tc = Clock::now();
+    PhaseTrace cone_trace{"normal_cones", Distribution::dynamic, 0, {}, {}};
     double cones_build_ms = 0;
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
       BodyState& body = bodies_[b];
@@ -323,12 +323,15 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
         tm.build_ms += ms;
         cones_build_ms += ms;
       }
-      result.traversal.cone_culled += body.cones->update(x_t0, x_t1, threads);
+      PhaseTrace body_trace;
+      result.traversal.cone_culled += body.cones->update(x_t0, x_t1, threads, body_trace);
+      cone_trace.serial_ms += body_trace.serial_ms;
+      cone_trace.task_ms.insert(cone_trace.task_ms.end(), body_trace.task_ms.begin(), body_trace.task_ms.end());
       result.traversal.contour_edges += body.cones->contour_edge_tests();
       body.skip_root = body.cones->skip_root();
     }
     tm.cones_ms = ms_since(tc) - cones_build_ms;
-    result.traces.push_back(PhaseTrace{"normal_cones", Distribution::dynamic, tm.cones_ms, {}, {}});
+    result.traces.push_back(std::move(cone_trace));
     if (cones_build_ms > 0) result.traces.push_back(PhaseTrace{"build", Distribution::dynamic, cones_build_ms, {}, {}});
   }
 

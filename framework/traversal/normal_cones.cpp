@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <chrono>
 #include <numeric>
 
 #include <omp.h>
@@ -124,6 +125,31 @@ NormalConeCuller::NormalConeCuller(const TriMesh& mesh, const BvhTopology& bvh) 
     }
   cone_.resize(n);
   skip_root_.assign(n, -1);
+  // Fixed cut: open nodes level by level until 256 sub-trees (or leaves).
+  std::vector<Index> level{0};
+  while (level.size() < 256) {
+    std::vector<Index> next;
+    for (Index i : level) {
+      if (bvh.nodes[i].is_leaf()) next.push_back(i);
+      else top_.push_back(i), next.push_back(bvh.nodes[i].left), next.push_back(bvh.nodes[i].right);
+    }
+    if (next.size() == level.size()) break;
+    level = std::move(next);
+  }
+  subtrees_ = std::move(level);
+  std::sort(top_.begin(), top_.end());
+}
+
+void NormalConeCuller::merge_children(Index i) {
+  const BvhNode& node = bvh_.nodes[i];
+  const auto m = merge({cone_[node.left].axis, cone_[node.left].half_angle}, {cone_[node.right].axis, cone_[node.right].half_angle});
+  cone_[i] = {m.axis, m.half_angle};
+}
+
+bool NormalConeCuller::passes(Index i, const Positions& x0, const Positions& x1, std::uint64_t& edges) const {
+  if (!is_disk_[i] || !(cone_[i].half_angle < kHalfPi - kConeMargin)) return false;
+  edges += boundary_.of(i).size() / 2;
+  return contour_is_star(i, cone_[i].axis, x0, x1);
 }
 
 bool NormalConeCuller::contour_is_star(Index node, const Vec3& V, const Positions& x0, const Positions& x1) const {
@@ -144,56 +170,56 @@ bool NormalConeCuller::contour_is_star(Index node, const Vec3& V, const Position
   return true;
 }
 
-std::uint64_t NormalConeCuller::update(const Positions& x0, const Positions& x1, int threads) {
-  const Index n = bvh_.size();
-  // Face cones: the cone of the three Bernstein coefficients of the normal.
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (Index i = 0; i < n; ++i) {
-    const BvhNode& node = bvh_.nodes[i];
-    if (!node.is_leaf()) continue;
-    const Face& t = mesh_.face(node.face);
+std::uint64_t NormalConeCuller::update(const Positions& x0, const Positions& x1, int threads, PhaseTrace& trace) {
+  using Clock = std::chrono::steady_clock;
+  auto face_cone = [&](Index i) {
+    const Face& t = mesh_.face(bvh_.nodes[i].face);
     const Vec3 B0 = x0[t[1]] - x0[t[0]], C0 = x0[t[2]] - x0[t[0]], B1 = x1[t[1]] - x1[t[0]], C1 = x1[t[2]] - x1[t[0]];
+    // The Bernstein coefficients of the quadratic n(t).
     const Vec3 beta[3] = {B0.cross(C0), 0.5 * (B0.cross(C1) + B1.cross(C0)), B1.cross(C1)};
     Vec3 sum = Vec3::Zero();
-    bool valid = true;
     for (const Vec3& b : beta) {
       const double len = b.norm();
-      if (!(len > 0)) valid = false;
-      else sum += b / len;
+      if (!(len > 0)) return Cone{Vec3::UnitZ(), 10};
+      sum += b / len;
     }
-    if (!valid || !(sum.norm() > 0)) {
-      cone_[i] = {Vec3::UnitZ(), 10};
-      continue;
-    }
+    if (!(sum.norm() > 0)) return Cone{Vec3::UnitZ(), 10};
     const Vec3 axis = sum.normalized();
     double half = 0;
     for (const Vec3& b : beta) half = std::max(half, angle_between(axis, b));
-    cone_[i] = {axis, half + 1e-9};
-  }
-  // Inner nodes, bottom-up (children follow parents in pre-order).
-  for (Index i = n - 1; i >= 0; --i) {
-    const BvhNode& node = bvh_.nodes[i];
-    if (node.is_leaf()) continue;
-    const auto m = merge({cone_[node.left].axis, cone_[node.left].half_angle}, {cone_[node.right].axis, cone_[node.right].half_angle});
-    cone_[i] = {m.axis, m.half_angle};
-  }
-  // Which nodes may skip their self test (independent, in parallel), then the topmost per node (pre-order).
-  std::vector<char> passes(n, 0);
-  std::uint64_t edge_tests = 0;
-#pragma omp parallel for schedule(dynamic, 64) num_threads(threads) reduction(+ : edge_tests)
-  for (Index i = 0; i < n; ++i) {
-    if (!is_disk_[i] || !(cone_[i].half_angle < kHalfPi - kConeMargin)) continue;
-    edge_tests += boundary_.of(i).size() / 2;
-    passes[i] = contour_is_star(i, cone_[i].axis, x0, x1);
-  }
-  contour_edge_tests_ = edge_tests;
-  std::uint64_t skipped = 0;
-  for (Index i = 0; i < n; ++i) {
+    return Cone{axis, half + 1e-9};
+  };
+  // 1. Cones bottom-up inside each sub-tree of the cut (parallel), then above it (serial).
+  PhaseTrace part;
+  parallel_chunks(subtrees_.size(), 1, threads, part, [&](std::size_t k, std::size_t, int) {
+    const Index r = subtrees_[k];
+    for (Index i = r + 2 * bvh_.leaf_count[r] - 2; i >= r; --i) {
+      if (bvh_.nodes[i].is_leaf()) cone_[i] = face_cone(i);
+      else merge_children(i);
+    }
+  });
+  trace.task_ms = part.task_ms;
+  auto t0 = Clock::now();
+  for (auto it = top_.rbegin(); it != top_.rend(); ++it) merge_children(*it);
+  // 2. Skips top-down: above the cut (serial), then inside each sub-tree (parallel).
+  std::uint64_t edges = 0, skipped = 0;
+  auto decide = [&](Index i, std::uint64_t& e, std::uint64_t& s) {
     const Index p = bvh_.nodes[i].parent;
     if (p >= 0 && skip_root_[p] >= 0) skip_root_[i] = skip_root_[p];
-    else if (passes[i]) skip_root_[i] = i, ++skipped;
+    else if (bvh_.leaf_count[i] >= kMinLeaves && passes(i, x0, x1, e)) skip_root_[i] = i, ++s;
     else skip_root_[i] = -1;
-  }
+  };
+  for (Index i : top_) decide(i, edges, skipped);
+  trace.serial_ms += ms_between(t0, Clock::now());
+  std::vector<PerThread<std::array<std::uint64_t, 2>>> counts(threads);
+  parallel_chunks(subtrees_.size(), 1, threads, part, [&](std::size_t k, std::size_t, int tid) {
+    const Index r = subtrees_[k];
+    auto& c = counts[tid].value;
+    for (Index i = r; i < r + 2 * bvh_.leaf_count[r] - 1; ++i) decide(i, c[0], c[1]);
+  });
+  trace.task_ms.insert(trace.task_ms.end(), part.task_ms.begin(), part.task_ms.end());
+  for (const auto& c : counts) edges += c.value[0], skipped += c.value[1];
+  contour_edge_tests_ = edges;
   return skipped;
 }
 

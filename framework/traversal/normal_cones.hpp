@@ -20,6 +20,7 @@
 #include "framework/geometry/vec.hpp"
 #include "framework/hierarchy/bvh.hpp"
 #include "framework/mesh/tri_mesh.hpp"
+#include "framework/util/parallel.hpp"
 
 namespace ccdlab {
 
@@ -29,8 +30,9 @@ class NormalConeCuller {
   NormalConeCuller(const TriMesh& mesh, const BvhTopology& bvh);
 
   /// Per step: face cones, merged bottom-up, then for every node the topmost ancestor-or-self whose self
-  /// test can be skipped (or −1). Returns the number of nodes whose self test is skipped at the top.
-  std::uint64_t update(const Positions& x_t0, const Positions& x_t1, int threads);
+  /// test can be skipped (or −1), evaluated top-down (no contour test below a skipped node). Parallel over a
+  /// fixed cut of sub-trees; task costs go to `trace`. Returns the number of topmost skipped nodes.
+  std::uint64_t update(const Positions& x_t0, const Positions& x_t1, int threads, PhaseTrace& trace);
 
   /// Topmost skipped ancestor-or-self of each node this step, −1 if none (what traversals read).
   [[nodiscard]] const std::vector<Index>& skip_root() const { return skip_root_; }
@@ -44,6 +46,9 @@ class NormalConeCuller {
     double half_angle = 10;  ///< radians; ≥ π/2 means "no cone"
   };
   [[nodiscard]] bool contour_is_star(Index node, const Vec3& axis, const Positions& x0, const Positions& x1) const;
+  /// Can node i skip its self test (disk, narrow cone, star contour)? Counts contour edges tested.
+  [[nodiscard]] bool passes(Index i, const Positions& x0, const Positions& x1, std::uint64_t& edges) const;
+  void merge_children(Index i);
 
   const TriMesh& mesh_;
   const BvhTopology& bvh_;
@@ -51,6 +56,8 @@ class NormalConeCuller {
   Adjacency boundary_;  ///< per node: boundary edges as (u, w) vertex pairs, flattened u0 w0 u1 w1 …
   std::vector<Cone> cone_;
   std::vector<Index> skip_root_;
+  std::vector<Index> subtrees_;  ///< fixed cut for parallel work (pre-order ranges)
+  std::vector<Index> top_;       ///< nodes above the cut, increasing index
   std::uint64_t contour_edge_tests_ = 0;
 };
 
