@@ -40,89 +40,130 @@ Cone merge(const Cone& a, const Cone& b) {
 
 }  // namespace
 
+namespace {
+
+/// What the disk analysis keeps per node while merging bottom-up.
+struct PatchInfo {
+  std::vector<std::array<Index, 4>> boundary;  ///< half-edges (edge id, from, to, component), sorted by edge id
+  Index vertices = 0, edges = 0, faces = 0;
+  Index components = 0;  ///< connected components with boundary (labels 0 … components − 1)
+  Index closed = 0;      ///< components without boundary
+  bool ok = true;        ///< consistently oriented and manifold (monotone: inherited by every ancestor)
+};
+
+/// Faces touching a non-manifold edge (> 2 faces) or a non-manifold vertex (faces around it not one fan):
+/// patches containing them are never treated as disks.
+std::vector<char> non_manifold_faces(const TriMesh& mesh) {
+  std::vector<char> bad(mesh.num_faces(), 0);
+  for (Index e = 0; e < mesh.num_edges(); ++e)
+    if (mesh.edge_faces(e).size() > 2)
+      for (Index f : mesh.edge_faces(e)) bad[f] = 1;
+  std::vector<Index> fan, stack;
+  for (Index v = 0; v < mesh.num_vertices(); ++v) {
+    auto faces = mesh.vertex_faces(v);
+    if (faces.size() <= 1) continue;
+    // Walk the fan from the first face through edges containing v.
+    fan.assign(1, faces[0]);
+    stack.assign(1, faces[0]);
+    while (!stack.empty()) {
+      const Index f = stack.back();
+      stack.pop_back();
+      for (Index e : mesh.face_edges(f)) {
+        const Edge& ed = mesh.edge(e);
+        if (ed[0] != v && ed[1] != v) continue;
+        for (Index g : mesh.edge_faces(e))
+          if (std::find(fan.begin(), fan.end(), g) == fan.end()) fan.push_back(g), stack.push_back(g);
+      }
+    }
+    if (fan.size() != faces.size())
+      for (Index f : faces) bad[f] = 1;
+  }
+  return bad;
+}
+
+void merge_patches(const PatchInfo& a, const PatchInfo& b, PatchInfo& out) {
+  out.faces = a.faces + b.faces;
+  out.ok = a.ok && b.ok;
+  // Component labels: a's as they are, b's shifted; shared edges unite them.
+  std::vector<Index> parent(std::size_t(a.components + b.components));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](Index x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  std::vector<std::array<Index, 4>> merged;
+  merged.reserve(a.boundary.size() + b.boundary.size());
+  Index shared_edges = 0;
+  std::size_t i = 0, j = 0;
+  while (i < a.boundary.size() || j < b.boundary.size()) {
+    if (j == b.boundary.size() || (i < a.boundary.size() && a.boundary[i][0] < b.boundary[j][0])) {
+      merged.push_back(a.boundary[i++]);
+    } else if (i == a.boundary.size() || b.boundary[j][0] < a.boundary[i][0]) {
+      auto h = b.boundary[j++];
+      h[3] += a.components;
+      merged.push_back(h);
+    } else {  // an edge on both boundaries: interior now; consistent orientation runs it both ways
+      if (a.boundary[i][1] != b.boundary[j][2]) out.ok = false;
+      parent[find(a.boundary[i][3])] = find(b.boundary[j][3] + a.components);
+      ++shared_edges, ++i, ++j;
+    }
+  }
+  // Shared vertices of two manifold patches lie on both boundaries.
+  std::vector<Index> va, vb;
+  for (const auto& h : a.boundary) va.push_back(h[1]), va.push_back(h[2]);
+  for (const auto& h : b.boundary) vb.push_back(h[1]), vb.push_back(h[2]);
+  std::sort(va.begin(), va.end());
+  va.erase(std::unique(va.begin(), va.end()), va.end());
+  std::sort(vb.begin(), vb.end());
+  vb.erase(std::unique(vb.begin(), vb.end()), vb.end());
+  Index shared_vertices = 0;
+  for (std::size_t p = 0, q = 0; p < va.size() && q < vb.size();) {
+    if (va[p] < vb[q]) ++p;
+    else if (vb[q] < va[p]) ++q;
+    else ++shared_vertices, ++p, ++q;
+  }
+  out.vertices = a.vertices + b.vertices - shared_vertices;
+  out.edges = a.edges + b.edges - shared_edges;
+  // Relabel components compactly; roots left without boundary edges became closed components.
+  std::vector<Index> compact(parent.size(), -1);
+  Index next = 0;
+  for (auto& h : merged) {
+    Index& c = compact[find(h[3])];
+    if (c < 0) c = next++;
+    h[3] = c;
+  }
+  Index roots = 0;
+  for (Index x = 0; x < Index(parent.size()); ++x) roots += find(x) == x;
+  out.components = next;
+  out.closed = a.closed + b.closed + (roots - next);
+  out.boundary = std::move(merged);
+}
+
+/// One boundary loop through distinct vertices (each boundary vertex starts exactly one boundary edge).
+bool single_loop(const std::vector<std::array<Index, 4>>& boundary) {
+  if (boundary.size() < 3) return false;
+  std::vector<std::array<Index, 2>> by_start;
+  for (const auto& h : boundary) by_start.push_back({h[1], h[2]});
+  std::sort(by_start.begin(), by_start.end());
+  for (std::size_t k = 1; k < by_start.size(); ++k)
+    if (by_start[k][0] == by_start[k - 1][0]) return false;
+  std::size_t steps = 0;
+  Index at = by_start[0][1];
+  while (steps < by_start.size()) {
+    auto it = std::lower_bound(by_start.begin(), by_start.end(), std::array<Index, 2>{at, -1});
+    if (it == by_start.end() || (*it)[0] != at) return false;
+    at = (*it)[1];
+    ++steps;
+    if (at == by_start[0][1]) break;
+  }
+  return steps == by_start.size();
+}
+
+}  // namespace
+
 NormalConeCuller::NormalConeCuller(const TriMesh& mesh, const BvhTopology& bvh) : mesh_(mesh), bvh_(bvh) {
   const Index n = bvh.size();
   is_disk_.assign(n, 0);
-  std::vector<std::vector<std::array<Index, 2>>> boundary(n);
-#pragma omp parallel for schedule(dynamic, 16)
-  for (Index node = 0; node < n; ++node) {
-    if (bvh.leaf_count[node] < kMinLeaves) continue;
-    std::vector<Index> faces = subtree_faces(bvh, node);
-    // Directed half-edges (edge id, from, to), sorted by edge id.
-    std::vector<std::array<Index, 3>> half;
-    for (Index f : faces)
-      for (int j = 0; j < 3; ++j) half.push_back({mesh.face_edges(f)[j], mesh.face(f)[j], mesh.face(f)[(j + 1) % 3]});
-    std::sort(half.begin(), half.end());
-    std::vector<std::array<Index, 2>> loop;
-    std::vector<Index> verts;
-    Index edges = 0;
-    bool ok = true;
-    // Union-find over local face order for connectivity through interior edges.
-    std::vector<Index> face_of_half(half.size());  // local face index of each sorted half-edge
-    {
-      std::vector<std::pair<std::array<Index, 3>, Index>> tagged;
-      for (std::size_t k = 0; k < faces.size(); ++k)
-        for (int j = 0; j < 3; ++j)
-          tagged.push_back({{mesh.face_edges(faces[k])[j], mesh.face(faces[k])[j], mesh.face(faces[k])[(j + 1) % 3]}, Index(k)});
-      std::sort(tagged.begin(), tagged.end());
-      for (std::size_t i = 0; i < tagged.size(); ++i) face_of_half[i] = tagged[i].second;
-    }
-    std::vector<Index> parent(faces.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    auto find = [&](Index x) {
-      while (parent[x] != x) x = parent[x] = parent[parent[x]];
-      return x;
-    };
-    for (std::size_t i = 0; i < half.size() && ok;) {
-      std::size_t j = i;
-      while (j < half.size() && half[j][0] == half[i][0]) ++j;
-      ++edges;
-      if (j - i == 1) {
-        loop.push_back({half[i][1], half[i][2]});
-      } else if (j - i == 2) {
-        // Interior edge: consistent orientation means opposite directions.
-        if (half[i][1] != half[i + 1][2]) ok = false;
-        parent[find(face_of_half[i])] = find(face_of_half[i + 1]);
-      } else {
-        ok = false;
-      }
-      verts.push_back(half[i][1]);
-      verts.push_back(half[i][2]);
-      i = j;
-    }
-    if (!ok || loop.size() < 3) continue;
-    for (std::size_t k = 1; k < faces.size() && ok; ++k) ok = find(Index(k)) == find(0);
-    std::sort(verts.begin(), verts.end());
-    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
-    if (!ok || Index(verts.size()) - edges + Index(faces.size()) != 1) continue;  // Euler characteristic of a disk
-    // One boundary loop through distinct vertices: each boundary vertex starts exactly one boundary edge, and
-    // following successors from the first edge visits them all.
-    std::vector<std::array<Index, 2>> by_start = loop;
-    std::sort(by_start.begin(), by_start.end());
-    bool simple = true;
-    for (std::size_t k = 1; k < by_start.size(); ++k) simple &= by_start[k][0] != by_start[k - 1][0];
-    if (!simple) continue;
-    std::size_t steps = 0;
-    Index at = by_start[0][1];
-    while (steps < by_start.size()) {
-      auto it = std::lower_bound(by_start.begin(), by_start.end(), std::array<Index, 2>{at, -1});
-      if (it == by_start.end() || (*it)[0] != at) break;
-      at = (*it)[1];
-      ++steps;
-      if (at == by_start[0][1]) break;
-    }
-    if (steps != by_start.size()) continue;
-    is_disk_[node] = 1;
-    boundary[node] = std::move(loop);
-  }
-  boundary_.offsets.assign(n + 1, 0);
-  for (Index i = 0; i < n; ++i) boundary_.offsets[i + 1] = boundary_.offsets[i] + 2 * Index(boundary[i].size());
-  boundary_.items.resize(boundary_.offsets[n]);
-  for (Index i = 0; i < n; ++i)
-    for (std::size_t k = 0; k < boundary[i].size(); ++k) {
-      boundary_.items[boundary_.offsets[i] + 2 * Index(k)] = boundary[i][k][0];
-      boundary_.items[boundary_.offsets[i] + 2 * Index(k) + 1] = boundary[i][k][1];
-    }
   cone_.resize(n);
   skip_root_.assign(n, -1);
   // Fixed cut: open nodes level by level until 256 sub-trees (or leaves).
@@ -138,6 +179,43 @@ NormalConeCuller::NormalConeCuller(const TriMesh& mesh, const BvhTopology& bvh) 
   }
   subtrees_ = std::move(level);
   std::sort(top_.begin(), top_.end());
+
+  // Disk analysis, bottom-up: a node's patch from its children's (O(boundary) per node).
+  const std::vector<char> bad = non_manifold_faces(mesh);
+  std::vector<PatchInfo> info(n);
+  auto analyse = [&](Index i) {
+    const BvhNode& node = bvh.nodes[i];
+    PatchInfo& p = info[i];
+    if (node.is_leaf()) {
+      const Face& t = mesh.face(node.face);
+      for (int j = 0; j < 3; ++j) p.boundary.push_back({mesh.face_edges(node.face)[j], t[j], t[(j + 1) % 3], 0});
+      std::sort(p.boundary.begin(), p.boundary.end());
+      p.vertices = 3, p.edges = 3, p.faces = 1, p.components = 1, p.closed = 0, p.ok = !bad[node.face];
+    } else {
+      merge_patches(info[node.left], info[node.right], p);
+      // Children's boundaries are no longer needed unless they are big enough to be culled themselves.
+      if (bvh.leaf_count[node.left] < kMinLeaves) std::vector<std::array<Index, 4>>().swap(info[node.left].boundary);
+      if (bvh.leaf_count[node.right] < kMinLeaves) std::vector<std::array<Index, 4>>().swap(info[node.right].boundary);
+    }
+    // A disk: one connected, consistently oriented manifold patch, Euler characteristic 1, one boundary loop.
+    is_disk_[i] = bvh.leaf_count[i] >= kMinLeaves && p.ok && p.components == 1 && p.closed == 0 &&
+                  p.vertices - p.edges + p.faces == 1 && single_loop(p.boundary);
+  };
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::ptrdiff_t k = 0; k < std::ptrdiff_t(subtrees_.size()); ++k) {
+    const Index r = subtrees_[std::size_t(k)];
+    for (Index i = r + 2 * bvh.leaf_count[r] - 2; i >= r; --i) analyse(i);
+  }
+  for (auto it = top_.rbegin(); it != top_.rend(); ++it) analyse(*it);
+
+  boundary_.offsets.assign(n + 1, 0);
+  for (Index i = 0; i < n; ++i) boundary_.offsets[i + 1] = boundary_.offsets[i] + (is_disk_[i] ? 2 * Index(info[i].boundary.size()) : 0);
+  boundary_.items.resize(boundary_.offsets[n]);
+  for (Index i = 0; i < n; ++i) {
+    if (!is_disk_[i]) continue;
+    Index at = boundary_.offsets[i];
+    for (const auto& h : info[i].boundary) boundary_.items[at++] = h[1], boundary_.items[at++] = h[2];
+  }
 }
 
 void NormalConeCuller::merge_children(Index i) {
