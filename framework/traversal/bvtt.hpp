@@ -31,6 +31,23 @@ struct BvttView {
   /// Normal-cone culling (self passes): topmost ancestor-or-self of each node whose self test is skipped this
   /// step, −1 if none; nullptr when culling is off. See normal_cones.hpp.
   const Index* skip_root = nullptr;
+  /// Appends the candidate of two overlapping leaves (ordered (min, max) in self passes; none when adjacent).
+  /// Returns whether one was appended.
+  bool emit_leaf_pair(const BvhNode& A, const BvhNode& B, std::vector<FacePair>& out) const {
+    if (!self) {
+      out.push_back({A.face, B.face});
+      return true;
+    }
+    if (mesh->faces_adjacent(A.face, B.face)) return false;
+    out.push_back(A.face < B.face ? FacePair{A.face, B.face} : FacePair{B.face, A.face});
+    return true;
+  }
+  /// The descent rule of a pair node: split a (true) or b (false) — the larger by size_measure, never a leaf.
+  [[nodiscard]] bool descend_a(Index a, Index b) const {
+    const BvhNode& A = bvh_a->nodes[a];
+    const BvhNode& B = bvh_b->nodes[b];
+    return B.is_leaf() || (!A.is_leaf() && (*bv_a)[a].size_measure() >= (*bv_b)[b].size_measure());
+  }
   /// Is (a, b) a pair node inside a patch whose self test is skipped?
   [[nodiscard]] bool in_skipped_patch(Index a, Index b) const {
     if (!skip_root) return false;
@@ -65,16 +82,10 @@ void traverse_bvtt(const BvttView<BV>& v, BvttNode start, std::vector<BvttNode>&
     if (!bva[n.a].overlaps(bvb[n.b])) continue;
     const BvhNode& B = nb[n.b];
     if (A.is_leaf() && B.is_leaf()) {
-      if (v.self) {
-        if (!v.mesh->faces_adjacent(A.face, B.face))
-          out.pairs.push_back(A.face < B.face ? FacePair{A.face, B.face} : FacePair{B.face, A.face});
-      } else {
-        out.pairs.push_back({A.face, B.face});
-      }
+      v.emit_leaf_pair(A, B, out.pairs);
       continue;
     }
-    bool descend_a = B.is_leaf() || (!A.is_leaf() && bva[n.a].size_measure() >= bvb[n.b].size_measure());
-    if (descend_a) {
+    if (v.descend_a(n.a, n.b)) {
       stack.push_back({A.right, n.b});
       stack.push_back({A.left, n.b});
     } else {

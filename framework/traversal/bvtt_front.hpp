@@ -54,13 +54,7 @@ void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNod
   const auto& bvb = *v.bv_b;
   // An overlapping leaf pair: a candidate, and it stays on the front — unless adjacent (then neither).
   auto emit = [&](const BvhNode& A, const BvhNode& B, Index a, Index b, std::uint8_t flags) {
-    if (v.self) {
-      if (v.mesh->faces_adjacent(A.face, B.face)) return;
-      pairs.push_back(A.face < B.face ? FacePair{A.face, B.face} : FacePair{B.face, A.face});
-    } else {
-      pairs.push_back({A.face, B.face});
-    }
-    next.push_back(FrontNode{a, b, flags});
+    if (v.emit_leaf_pair(A, B, pairs)) next.push_back(FrontNode{a, b, flags});
   };
   // Is `p` an ancestor of (or equal to) `q` in tree a? Sub-tree of p = pre-order range [p, p + 2·leaves − 1).
   auto contains = [&](Index p, Index q) { return q >= p && q < p + 2 * v.bvh_a->leaf_count[p] - 1; };
@@ -132,7 +126,7 @@ void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNod
         }
       }
       first = false;
-      if (Y.is_leaf() || (!X.is_leaf() && bva[n.a].size_measure() >= bvb[n.b].size_measure())) {
+      if (v.descend_a(n.a, n.b)) {
         stack.push_back({X.right, n.b});
         stack.push_back({X.left, n.b});
       } else {

@@ -34,13 +34,11 @@ std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t wa
       if (!(*v.bv_a)[n.a].overlaps((*v.bv_b)[n.b])) continue;
       const BvhNode& B = nb[n.b];
       if (A.is_leaf() && B.is_leaf()) {
-        if (!v.self) out.pairs.push_back({A.face, B.face});
-        else if (!v.mesh->faces_adjacent(A.face, B.face))
-          out.pairs.push_back(A.face < B.face ? FacePair{A.face, B.face} : FacePair{B.face, A.face});
+        v.emit_leaf_pair(A, B, out.pairs);
         continue;
       }
       opened = true;
-      if (B.is_leaf() || (!A.is_leaf() && (*v.bv_a)[n.a].size_measure() >= (*v.bv_b)[n.b].size_measure())) {
+      if (v.descend_a(n.a, n.b)) {
         next.push_back({A.left, n.b});
         next.push_back({A.right, n.b});
       } else {

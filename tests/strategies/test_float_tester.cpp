@@ -121,7 +121,9 @@ TEST(FloatTester, AnswersDoNotDependOnScaleOrPosition) {
         CcdHit ref = t.vertex_face(vfs[i]);
         CcdHit h = t.vertex_face(transform(vfs[i], s, shift * s));
         EXPECT_EQ(h.hit, ref.hit) << "vf case " << i << " scale " << s << " shift " << shift.transpose();
-        if (h.hit) EXPECT_NEAR(h.toi, ref.toi, 1e-6);
+        if (h.hit) {
+          EXPECT_NEAR(h.toi, ref.toi, 1e-6);
+        }
       }
       CcdHit h = t.edge_edge(transform(ee, s, shift * s));
       EXPECT_TRUE(h.hit) << "ee scale " << s;

@@ -90,7 +90,9 @@ TEST(Schedulers, IdenticalAnswersForEverySchedulerAndThreadCount) {
         EXPECT_EQ(r.candidates[s], reference.candidates[s]) << "step " << s;
         EXPECT_EQ(r.hashes[s], reference.hashes[s]) << "step " << s;
       }
-      if (variant.name == "front") EXPECT_LT(r.bv_tests, reference.bv_tests) << "the front must save BV tests";
+      if (variant.name == "front") {
+        EXPECT_LT(r.bv_tests, reference.bv_tests) << "the front must save BV tests";
+      }
     }
 }
 
@@ -140,11 +142,16 @@ TEST(FrontScheduler, FrontCoversEveryNonAdjacentLeafPairExactlyOnceAndShrinksWhe
           else ASSERT_EQ(n, 1) << "step " << i << " pair " << a << " " << b;
         }
       sizes.push_back(front->front(0).size());
-      if (i == 3) EXPECT_GT(r.contacts.size(), 0u);
+      if (i == 3) {
+        EXPECT_GT(r.contacts.size(), 0u);
+      }
     }
     const std::size_t peak = *std::max_element(sizes.begin(), sizes.end());
-    if (prune) EXPECT_LT(sizes.back(), peak) << "pruning must shrink the front once the sheets separate";
-    else EXPECT_EQ(sizes.back(), peak) << "without pruning the front only grows";
+    if (prune) {
+      EXPECT_LT(sizes.back(), peak) << "pruning must shrink the front once the sheets separate";
+    } else {
+      EXPECT_EQ(sizes.back(), peak) << "without pruning the front only grows";
+    }
   }
 }
 
@@ -170,7 +177,9 @@ TEST(AdaptiveRestructuring, RebuildsDegradedSubtreesWithoutChangingAnswers) {
         version_before = p.bvh(0).version;
         StepResult r = p.step(x0, x1);
         restructured += r.counters.restructured;
-        if (r.counters.restructured > 0 && i > 0) EXPECT_GT(p.bvh(0).version, version_before);
+        if (r.counters.restructured > 0 && i > 0) {
+          EXPECT_GT(p.bvh(0).version, version_before);
+        }
         std::vector<Index> faces;
         for (Index f = scene.bodies()[0].face_begin; f < scene.bodies()[0].face_end; ++f) faces.push_back(f);
         ASSERT_NO_THROW(validate_bvh(p.bvh(0), faces)) << "step " << i;

@@ -113,8 +113,9 @@ TEST(OrphanSet, CoversExactlyThePairsOfAdjacentOwners) {
   EXPECT_EQ(ee.size(), orphans.ee.size());
   for (Index v = 0; v < mesh.num_vertices(); ++v)
     for (Index f = 0; f < mesh.num_faces(); ++f)
-      if (!contains_vertex(mesh.face(f), v))
+      if (!contains_vertex(mesh.face(f), v)) {
         EXPECT_EQ(vf.count({v, f}) > 0, mesh.faces_adjacent(own.vertex_owner[v], f));
+      }
   // No self-collision: no orphans.
   OrphanSet none = build_orphan_set(mesh, own, [](Index) { return false; });
   EXPECT_TRUE(none.vf.empty() && none.ee.empty());
