@@ -264,6 +264,7 @@ void CcdPipeline::test_in_parallel(const Pairs& pairs, std::size_t chunk, const 
     c.ee_tests += l.ee_tests;
     c.contacts_vf += l.contacts_vf;
     c.contacts_ee += l.contacts_ee;
+    c.orphans_culled += l.orphans_culled;
     if (record_tested_) {
       result.tested_vf.insert(result.tested_vf.end(), lt.record.tested_vf.begin(), lt.record.tested_vf.end());
       result.tested_ee.insert(result.tested_ee.end(), lt.record.tested_ee.begin(), lt.record.tested_ee.end());
@@ -310,6 +311,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   if (strategies_.normal_cones) {
     const auto tc = Clock::now();
     PhaseTrace cone_trace{"normal_cones", Distribution::dynamic, 0, {}, {}};
+    face_patch_.assign(mesh_.num_faces(), -1);
     double cones_build_ms = 0;
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
       BodyState& body = bodies_[b];
@@ -329,6 +331,9 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
       cone_trace.task_ms.insert(cone_trace.task_ms.end(), body_trace.task_ms.begin(), body_trace.task_ms.end());
       result.traversal.contour_edges += body.cones->contour_edge_tests();
       body.skip_root = body.cones->skip_root();
+      // Orphan pairs of two faces in one skipped patch cannot touch either (same height-field argument).
+      for (Index i = 0; i < body.bvh.size(); ++i)
+        if (body.bvh.nodes[i].is_leaf()) face_patch_[body.bvh.nodes[i].face] = body.skip_root[i];
     }
     tm.cones_ms = ms_since(tc) - cones_build_ms;
     result.traces.push_back(std::move(cone_trace));
@@ -361,17 +366,29 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
 
   t = Clock::now();
   const std::uint64_t vf_before = c.vf_pairs, ee_before = c.ee_pairs, tests_before = c.vf_tests + c.ee_tests;
+  const bool cull = strategies_.normal_cones;
+  auto same_skipped_patch = [this](Index f, Index g) {
+    return face_patch_[f] >= 0 && face_patch_[f] == face_patch_[g];
+  };
   test_in_parallel(orphans_.vf, kOrphanChunk, "orphans_vf", result,
-                   [this](const VertexFacePair& p, std::vector<Contact>& out, StepCounters& lc, StepResult* rec) {
+                   [&](const VertexFacePair& p, std::vector<Contact>& out, StepCounters& lc, StepResult* rec) {
+                     if (cull && same_skipped_patch(owners_.vertex_owner[p.v], p.f)) {
+                       ++lc.orphans_culled;
+                       return;
+                     }
                      narrow_.test_vf(p.v, p.f, out, lc);
                      if (rec) rec->tested_vf.push_back(p);
                    });
   test_in_parallel(orphans_.ee, kOrphanChunk, "orphans_ee", result,
-                   [this](const EdgeEdgePair& p, std::vector<Contact>& out, StepCounters& lc, StepResult* rec) {
+                   [&](const EdgeEdgePair& p, std::vector<Contact>& out, StepCounters& lc, StepResult* rec) {
+                     if (cull && same_skipped_patch(owners_.edge_owner[p.a], owners_.edge_owner[p.b])) {
+                       ++lc.orphans_culled;
+                       return;
+                     }
                      narrow_.test_ee(p.a, p.b, out, lc);
                      if (rec) rec->tested_ee.push_back(p);
                    });
-  c.orphan_vf = c.vf_pairs - vf_before;
+  c.orphan_vf = c.vf_pairs - vf_before;  // orphan pairs considered (culled ones counted apart)
   c.orphan_ee = c.ee_pairs - ee_before;
   c.orphan_tests = c.vf_tests + c.ee_tests - tests_before;
   tm.orphan_ms = ms_since(t);

@@ -89,6 +89,7 @@ class CcdPipeline {
   std::vector<BodyState> bodies_;
   std::vector<TraversalPass> passes_;
   AnyBvs face_bvs_;
+  std::vector<Index> face_patch_;  ///< normal cones: the skipped patch (BVH node) holding each face this step, or −1
   TraversalOutput candidates_;
   bool built_ = false;
   bool record_tested_ = false;

@@ -20,6 +20,7 @@ struct StepCounters {
   std::uint64_t vf_tests = 0;         ///< elementary VF tests run (feature boxes overlapped)
   std::uint64_t ee_tests = 0;         ///< elementary EE tests run
   std::uint64_t orphan_tests = 0;     ///< of the VF + EE tests, those from the orphan set
+  std::uint64_t orphans_culled = 0;   ///< orphan pairs inside a patch skipped by normal-cone culling
   std::uint64_t restructured = 0;     ///< BVH sub-trees rebuilt by adaptive restructuring
   std::uint64_t contacts_vf = 0;
   std::uint64_t contacts_ee = 0;
