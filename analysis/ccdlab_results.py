@@ -13,9 +13,10 @@ from pathlib import Path
 
 import pandas as pd
 
-PHASES = ["build_ms", "swept_bv_ms", "refit_ms", "traverse_ms", "narrow_ms", "orphan_ms"]
+PHASES = ["build_ms", "swept_bv_ms", "refit_ms", "cones_ms", "traverse_ms", "narrow_ms", "orphan_ms"]
+OPTIONAL_PHASES = {"cones_ms"}  # absent from results written before normal-cone culling existed
 REQUIRED_COLUMNS = ["step", "bv_tests", "candidate_pairs", "vf_tests", "ee_tests", "contacts_vf", "contacts_ee",
-                    "total_ms", *PHASES]
+                    "total_ms", *[p for p in PHASES if p not in OPTIONAL_PHASES]]
 
 
 class ResultError(Exception):
@@ -44,6 +45,9 @@ def load_run(folder: str | Path) -> Run:
         raise ResultError(f"{csv}: missing columns {', '.join(missing)}")
     if steps.empty:
         raise ResultError(f"{csv}: no steps")
+    for phase in OPTIONAL_PHASES:
+        if phase not in steps.columns:
+            steps[phase] = 0.0
     config, summary = {}, None
     jsonl = folder / "steps.jsonl"
     if jsonl.is_file():

@@ -20,7 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from ccdlab_results import PHASES, ResultError, load_run  # noqa: E402
 
-PHASE_LABELS = {"build_ms": "BVH build", "swept_bv_ms": "swept BVs", "refit_ms": "refit",
+PHASE_LABELS = {"build_ms": "BVH build", "swept_bv_ms": "swept BVs", "refit_ms": "refit", "cones_ms": "normal cones",
                 "traverse_ms": "BVTT traversal", "narrow_ms": "narrow phase", "orphan_ms": "orphan set"}
 
 

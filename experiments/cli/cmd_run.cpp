@@ -138,9 +138,10 @@ int run_command(const RunOptions& o) {
   if (o.json) {
     fmt::print("{}\n", summary.dump(2));
   } else {
-    fmt::print("\n{} steps: median {:.2f} ms/step (swept BV {:.2f}, refit {:.2f}, traverse {:.2f}, narrow {:.2f}, "
+    const std::string cones = config.normal_cones ? fmt::format(", normal cones {:.2f}", median(cones_ms)) : "";
+    fmt::print("\n{} steps: median {:.2f} ms/step (swept BV {:.2f}, refit {:.2f}{}, traverse {:.2f}, narrow {:.2f}, "
                "orphans {:.2f}); contacts vf={} ee={}; hash {:016x}\nresults in {}/\n",
-               scene.num_steps(), median(total_ms), median(swept_ms), median(refit_ms), median(traverse_ms),
+               scene.num_steps(), median(total_ms), median(swept_ms), median(refit_ms), cones, median(traverse_ms),
                median(narrow_ms), median(orphan_ms), vf, ee, hash, config.output.dir);
   }
   return 0;
