@@ -7,6 +7,9 @@
 #include "strategies/schedulers/phc_scheduler.hpp"
 #include "strategies/schedulers/sequential_scheduler.hpp"
 #include "strategies/schedulers/static_scheduler.hpp"
+#include "strategies/testers/conservative_tester.hpp"
+#include "strategies/testers/exact_tester.hpp"
+#include "strategies/testers/filtered_tester.hpp"
 #include "strategies/testers/float_tester.hpp"
 
 namespace ccdlab {
@@ -64,6 +67,23 @@ const TesterRegistry& tester_registry() {
            {{"thickness", ParamType::real, 0.0, "contact distance eta (scene units)", 0, 1e300}},
            [](const ParamValues& p) -> std::unique_ptr<PrimitiveTester> {
              return std::make_unique<FloatTester>(FloatTester::Params{p.real("thickness")});
+           }});
+    r.add({"filtered", "certified Bernstein non-penetration filter (Tang 2010), then float; zero thickness", {},
+           [](const ParamValues&) -> std::unique_ptr<PrimitiveTester> { return std::make_unique<FilteredTester>(); }});
+    r.add({"conservative", "interval bisection in time with certified Bernstein bounds: never misses; zero thickness",
+           {{"delta", ParamType::real, 1e-6, "relative tolerance: undecided once features move < delta*size in a window", 0, 1},
+            {"fallback", ParamType::string, std::string("hit"), "what an undecided query becomes: hit or exact", 0, 0, {"hit", "exact"}},
+            {"max_windows", ParamType::integer, 512LL, "time windows per query before the fallback", 1, 1 << 20},
+            {"toi_tolerance", ParamType::real, 1e-6, "width of the time window reported for a hit", 0, 1}},
+           [](const ParamValues& p) -> std::unique_ptr<PrimitiveTester> {
+             return std::make_unique<ConservativeTester>(ConservativeTester::Params{
+                 p.real("delta"), ConservativeTester::parse_fallback(p.string("fallback")), int(p.integer("max_windows")),
+                 p.real("toi_tolerance")});
+           }});
+    r.add({"exact", "reference: exact algebraic roots and signs on GMP integers (CGAL); zero thickness",
+           {{"prefilter", ParamType::boolean, true, "decide certainly separated queries by interval bounds first", 0, 0}},
+           [](const ParamValues& p) -> std::unique_ptr<PrimitiveTester> {
+             return std::make_unique<ExactTester>(ExactTester::Params{p.boolean("prefilter")});
            }});
     return r;
   }();

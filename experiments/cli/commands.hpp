@@ -38,6 +38,18 @@ struct BenchOptions {
 };
 int bench_command(const BenchOptions& o);
 
+struct ValidateOptions {
+  std::vector<std::string> paths;  ///< query CSV files / folders, or "hard-cases"
+  std::vector<std::string> testers = {"float", "filtered", "conservative", "exact"};
+  int repeat = 3;                  ///< time each query this many times, keep the fastest
+  std::string out_dir;             ///< write validate.csv / validate.jsonl here
+  int failures = 0;                ///< list up to this many wrong answers per tester and set
+  bool check = false;              ///< exit 1 when exact disagrees with the truth or conservative misses
+  bool json = false;
+  bool progress = true;
+};
+int validate_command(const ValidateOptions& o);
+
 int list_command();
 int info_command();
 

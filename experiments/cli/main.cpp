@@ -1,4 +1,4 @@
-// ccdlab: command-line entry point. Subcommands: run, step, list, info (see README.md).
+// ccdlab: command-line entry point. Subcommands: run, step, bench, validate, list, info (see README.md).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -42,6 +42,19 @@ int main(int argc, char** argv) {
   bench_cmd->add_flag("--json", bench.json, "print one JSON object instead of the tables");
   bench_cmd->add_flag("--no-progress", bench_no_progress, "no progress line on stderr");
 
+  ValidateOptions validate;
+  bool validate_no_progress = false;
+  auto* validate_cmd = app.add_subcommand("validate", "testers against elementary query sets with known answers");
+  validate_cmd->add_option("paths", validate.paths, "query CSV files or folders (../shared/data/ccd-queries), or hard-cases")->required();
+  validate_cmd->add_option("--tester", validate.testers, "tester, e.g. float or conservative:delta=1e-4,fallback=exact (repeatable)")
+      ->capture_default_str();
+  validate_cmd->add_option("--repeat", validate.repeat, "time each query this many times, keep the fastest")->capture_default_str();
+  validate_cmd->add_option("--out", validate.out_dir, "write validate.csv and validate.jsonl into this folder");
+  validate_cmd->add_option("--failures", validate.failures, "list up to N wrong answers per tester and set");
+  validate_cmd->add_flag("--check", validate.check, "exit 1 if exact disagrees with the truth or conservative misses");
+  validate_cmd->add_flag("--json", validate.json, "print JSON instead of the table");
+  validate_cmd->add_flag("--no-progress", validate_no_progress, "no progress line on stderr");
+
   auto* list_cmd = app.add_subcommand("list", "registered strategies and their parameters");
   auto* info_cmd = app.add_subcommand("info", "compiler, flags, OpenMP, git revision");
 
@@ -59,6 +72,10 @@ int main(int argc, char** argv) {
     if (*bench_cmd) {
       bench.progress = !bench_no_progress;
       return bench_command(bench);
+    }
+    if (*validate_cmd) {
+      validate.progress = !validate_no_progress;
+      return validate_command(validate);
     }
     if (*list_cmd) return list_command();
     if (*info_cmd) return info_command();

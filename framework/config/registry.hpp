@@ -21,6 +21,7 @@ struct ParamSpec {
   std::string description;
   double min = -std::numeric_limits<double>::infinity();  ///< for integer and real
   double max = std::numeric_limits<double>::infinity();
+  std::vector<std::string> choices = {};  ///< for string parameters: the valid values (empty = any)
 };
 
 std::string_view to_string(ParamType type);

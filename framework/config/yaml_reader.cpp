@@ -97,7 +97,12 @@ ParamValues::Value YamlReader::param(const YAML::Node& node, const std::string& 
     case ParamType::integer: return integer(node, path, spec.min, spec.max);
     case ParamType::real: return real(node, path, spec.min, spec.max);
     case ParamType::boolean: return boolean(node, path);
-    case ParamType::string: return string(node, path);
+    case ParamType::string: {
+      std::string v = string(node, path);
+      if (!spec.choices.empty() && std::find(spec.choices.begin(), spec.choices.end(), v) == spec.choices.end())
+        error(node, path, fmt::format("one of {}", fmt::join(spec.choices, ", ")));
+      return v;
+    }
   }
   return {};
 }

@@ -25,11 +25,19 @@ struct EdgeEdgeQuery {
   Vec3 ea0_t1, ea1_t1, eb0_t1, eb1_t1;
 };
 
+/// Which part of a tester decided a query (counted by the pipeline and `ccdlab validate`).
+enum class TestRoute : std::uint8_t {
+  main = 0,      ///< the tester's own method
+  filter = 1,    ///< a cheap certified filter in front of it (`filtered`, the prefilter of `exact`)
+  fallback = 2,  ///< the method could not decide and fell back (`conservative`: reported hit or exact)
+};
+
 /// Result of one elementary test. "No contact" is hit == false (toi and coords then meaningless).
 struct CcdHit {
   bool hit = false;
-  double toi = 1.0;                 ///< earliest time of contact in [0, 1]
+  double toi = 1.0;                 ///< earliest time of contact in [0, 1] (a lower bound for `conservative`)
   std::array<double, 2> coords{};   ///< VF: barycentric weights of f1, f2; EE: parameters on edge a, edge b
+  TestRoute route = TestRoute::main;
 };
 
 enum class ContactKind : std::uint8_t { vf = 0, ee = 1 };

@@ -1,0 +1,166 @@
+// `ccdlab validate PATH… [--tester NAME[:key=value,…]]…`: runs testers over elementary query sets with known
+// answers (the shared CSV format, or `hard-cases` for the built-in degenerate families) and prints, per tester
+// and set: false negatives and positives, µs per query (mean / median / p99 / max), how many a filter or a
+// fallback decided, and the time-of-contact error against the exact tester.
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
+
+#include "ccdlab/build_info.hpp"
+#include "experiments/cli/commands.hpp"
+#include "framework/config/yaml_reader.hpp"
+#include "framework/queries/evaluate.hpp"
+#include "framework/queries/hard_cases.hpp"
+#include "framework/util/error.hpp"
+#include "framework/util/progress.hpp"
+#include "strategies/registry.hpp"
+#include "strategies/testers/exact_tester.hpp"
+
+namespace ccdlab::cli {
+namespace fs = std::filesystem;
+namespace {
+
+/// "conservative:delta=1e-4,fallback=exact" → a validated choice (errors name the --tester argument).
+StrategyChoice parse_tester(const std::string& spec, const TesterRegistry& registry) {
+  YAML::Node node(YAML::NodeType::Map);
+  const auto colon = spec.find(':');
+  node["name"] = spec.substr(0, colon);
+  if (colon != std::string::npos) {
+    std::string rest = spec.substr(colon + 1);
+    std::size_t pos = 0;
+    while (pos <= rest.size()) {
+      const std::size_t comma = std::min(rest.find(',', pos), rest.size());
+      const std::string kv = rest.substr(pos, comma - pos);
+      const auto eq = kv.find('=');
+      if (eq == std::string::npos || eq == 0) fail("--tester {}: expected name:key=value,…, got '{}'", spec, kv);
+      node[kv.substr(0, eq)] = YAML::Load(kv.substr(eq + 1));
+      pos = comma + 1;
+    }
+  }
+  YamlReader reader("--tester " + spec, {});
+  return reader.strategy(node, "tester", registry, "float");
+}
+
+std::string label(const StrategyChoice& c, const TesterRegistry& registry) {
+  std::string out = c.name;
+  const auto defaults = registry.find(c.name)->defaults().all();
+  for (const auto& [k, v] : c.params.all()) {
+    if (defaults.at(k) == v) continue;
+    std::visit([&](const auto& x) { out += fmt::format("{}{}={}", out == c.name ? ":" : ",", k, x); }, v);
+  }
+  return out;
+}
+
+nlohmann::json score_json(const SetScore& s) {
+  return {{"set", s.set}, {"tester", s.tester}, {"queries", s.queries}, {"positives", s.positives},
+          {"false_negatives", s.false_negatives}, {"false_positives", s.false_positives}, {"filtered", s.filtered},
+          {"fallbacks", s.fallbacks}, {"mean_us", s.mean_us}, {"median_us", s.median_us}, {"p99_us", s.p99_us},
+          {"max_us", s.max_us}, {"toi_max_error", s.toi_max_error}, {"toi_mean_error", s.toi_mean_error},
+          {"toi_late", s.toi_late}};
+}
+
+}  // namespace
+
+int validate_command(const ValidateOptions& o) {
+  const Registries reg = builtin_registries();
+  std::vector<StrategyChoice> choices;
+  for (const auto& spec : o.testers) choices.push_back(parse_tester(spec, reg.testers));
+  std::vector<std::unique_ptr<PrimitiveTester>> testers;
+  std::vector<std::string> names;
+  for (const auto& c : choices) {
+    testers.push_back(reg.testers.make(c));
+    names.push_back(label(c, reg.testers));
+  }
+
+  std::vector<QuerySet> sets;
+  for (const auto& path : o.paths) {
+    auto more = path == "hard-cases" ? hard_case_sets() : load_query_sets(path);
+    for (auto& s : more) sets.push_back(std::move(s));
+  }
+
+  const ExactTester exact;
+  std::vector<SetScore> scores;
+  std::size_t total = 0;
+  for (const auto& s : sets) total += s.size();
+  Progress progress("validate", long(total * (testers.size() + 1)), o.progress);
+  long done = 0;
+  for (const QuerySet& set : sets) {
+    std::vector<ToiReference> reference(set.size());
+    for (std::size_t i = 0; i < set.size(); ++i) {
+      const auto d = set.kind == ContactKind::vf ? exact.decide(set.vf[i]) : exact.decide(set.ee[i]);
+      reference[i] = {d.hit, d.toi_lo, d.toi_hi};
+    }
+    progress.update(done += long(set.size()));
+    for (std::size_t t = 0; t < testers.size(); ++t) {
+      const auto outcomes = run_tester(*testers[t], set, o.repeat);
+      scores.push_back(score(set, names[t], outcomes, reference));
+      progress.update(done += long(set.size()));
+    }
+  }
+
+  int status = 0;
+  for (const SetScore& s : scores) {
+    const std::string tester_name = s.tester.substr(0, s.tester.find(':'));
+    if (o.check && tester_name == "exact" && (s.false_negatives || s.false_positives)) status = 1;
+    if (o.check && tester_name == "conservative" && (s.false_negatives || s.toi_late)) status = 1;
+  }
+
+  if (!o.out_dir.empty()) {
+    std::error_code ec;
+    fs::create_directories(o.out_dir, ec);
+    if (ec) fail("--out: cannot create '{}': {}", o.out_dir, ec.message());
+    std::ofstream csv(fs::path(o.out_dir) / "validate.csv"), jsonl(fs::path(o.out_dir) / "validate.jsonl");
+    if (!csv || !jsonl) fail("--out: cannot write into '{}'", o.out_dir);
+    csv << "set,tester,queries,positives,false_negatives,false_positives,filtered,fallbacks,mean_us,median_us,p99_us,"
+           "max_us,toi_max_error,toi_mean_error,toi_late,git_revision\n";
+    for (const SetScore& s : scores)
+      csv << fmt::format("{},{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.3g},{:.3g},{},{}\n", s.set, s.tester,
+                         s.queries, s.positives, s.false_negatives, s.false_positives, s.filtered, s.fallbacks, s.mean_us,
+                         s.median_us, s.p99_us, s.max_us, s.toi_max_error, s.toi_mean_error, s.toi_late,
+                         build_info::git_revision);
+    jsonl << nlohmann::json{{"type", "config"}, {"paths", o.paths}, {"testers", names}, {"repeat", o.repeat},
+                            {"git_revision", build_info::git_revision}}.dump()
+          << "\n";
+    for (const SetScore& s : scores) {
+      auto j = score_json(s);
+      j["type"] = "score";
+      jsonl << j.dump() << "\n";
+    }
+  }
+
+  if (o.json) {
+    nlohmann::json j = nlohmann::json::array();
+    for (const SetScore& s : scores) j.push_back(score_json(s));
+    fmt::print("{}\n", nlohmann::json{{"scores", j}, {"git_revision", build_info::git_revision}}.dump(2));
+    return status;
+  }
+  std::size_t set_w = 3, tester_w = 6;
+  for (const SetScore& s : scores) set_w = std::max(set_w, s.set.size()), tester_w = std::max(tester_w, s.tester.size());
+  fmt::print("{:<{}}  {:<{}} {:>7} {:>6} {:>5} {:>5} {:>7} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "set", set_w, "tester",
+             tester_w, "queries", "hits", "FN", "FP", "filter", "fallbk", "mean µs", "median µs", "p99 µs", "max µs",
+             "ToI err");
+  for (const SetScore& s : scores)
+    fmt::print("{:<{}}  {:<{}} {:>7} {:>6} {:>5} {:>5} {:>7} {:>7} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.1f} {:>9.2g}\n", s.set,
+               set_w, s.tester, tester_w, s.queries, s.positives, s.false_negatives, s.false_positives, s.filtered,
+               s.fallbacks, s.mean_us, s.median_us, s.p99_us, s.max_us, s.toi_max_error);
+  if (o.failures > 0) {
+    for (const SetScore& s : scores) {
+      if (s.failures.empty()) continue;
+      const QuerySet* set = nullptr;
+      for (const auto& q : sets)
+        if (q.name == s.set) set = &q;
+      fmt::print("\n{} on {}: {} wrong\n", s.tester, s.set, s.failures.size());
+      for (std::size_t k = 0; k < s.failures.size() && int(k) < o.failures; ++k) {
+        const std::size_t i = s.failures[k];
+        fmt::print("  {} {}\n", set->truth[i] ? "missed   " : "false hit", set->origin[i]);
+      }
+    }
+  }
+  if (o.check && status) fmt::print(stderr, "ccdlab validate: check failed (exact disagrees with the ground truth, or conservative missed a collision or reported a late time of contact)\n");
+  return status;
+}
+
+}  // namespace ccdlab::cli

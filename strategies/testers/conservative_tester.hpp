@@ -1,0 +1,48 @@
+#pragma once
+// `conservative`: never misses a collision (zero thickness, linear motion). Every rounding error is
+// accounted for by interval arithmetic (framework/geometry/interval.hpp); the step [0, 1] is bisected in time
+// and each window is classified by the certified Bernstein bounds of interval_ccd.hpp:
+//   separated → dropped;  contact (proven root of f, features strictly inside) → hit;  unknown → bisected.
+// Windows are visited earliest first, so the first hit's window start is a lower bound on the time of
+// contact; the time is then narrowed to `toi_tolerance` with the (cheaper) coplanarity test alone.
+//
+// δ (`delta`) trades false hits for time: a window still unknown once the features move less than δ·L
+// within it (L = the query's bounding-box diagonal — δ is relative, so answers do not depend on the scale)
+// goes to the fallback: report a hit (never wrong for a collision, possibly a near miss within ≈δ·L), or
+// ask the `exact` tester. Unlike δ-inclusion methods (Tight-Inclusion), only time is bisected and the
+// inside / crossing conditions are exact polynomial signs, so near misses farther than ≈δ·L are resolved.
+#include "strategies/testers/exact_tester.hpp"
+#include "strategies/testers/interval_ccd.hpp"
+
+namespace ccdlab {
+
+class ConservativeTester final : public PrimitiveTester {
+ public:
+  enum class Fallback { hit, exact };
+  struct Params {
+    double delta = 1e-6;          ///< relative spatial tolerance of an undecided window (≥ 0)
+    Fallback fallback = Fallback::hit;
+    int max_windows = 512;        ///< bound on windows per query (bounds the tail); beyond it: fallback
+    double toi_tolerance = 1e-6;  ///< width of the final time window of a hit
+  };
+  ConservativeTester() = default;
+  explicit ConservativeTester(Params p) : params_(p) {}
+  [[nodiscard]] std::string_view name() const override { return "conservative"; }
+  [[nodiscard]] double thickness() const override { return 0.0; }
+  [[nodiscard]] CcdHit vertex_face(const VertexFaceQuery& q) const override;
+  [[nodiscard]] CcdHit edge_edge(const EdgeEdgeQuery& q) const override;
+
+  static Fallback parse_fallback(const std::string& name);
+
+ private:
+  template <class Query>
+  CcdHit search(const Query& q) const;
+  /// The start of the earliest sub-window of [tl, th], toi_tolerance wide, where f may vanish: a lower bound
+  /// on any contact time in [tl, th] (all of them need coplanarity).
+  [[nodiscard]] double earliest_root(const interval_ccd::RelativeMotion& m, double tl, double th) const;
+
+  Params params_{};
+  ExactTester exact_{};
+};
+
+}  // namespace ccdlab

@@ -1,0 +1,209 @@
+#include "strategies/testers/exact_tester.hpp"
+
+// CGAL's algebraic kernel on GMP integers. This is the only translation unit that includes it (it is heavy
+// to compile and is built with -frounding-math, see CMakeLists.txt).
+#include <CGAL/Algebraic_kernel_d_1.h>
+#include <CGAL/Gmpq.h>
+#include <CGAL/Gmpz.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <vector>
+
+#include "framework/geometry/distance.hpp"
+#include "strategies/testers/interval_ccd.hpp"
+
+namespace ccdlab {
+namespace {
+
+using Z = CGAL::Gmpz;
+using Q = CGAL::Gmpq;
+using AK = CGAL::Algebraic_kernel_d_1<Z>;
+using Poly = AK::Polynomial_1;
+using Root = AK::Algebraic_real_1;
+using PVec = std::array<Poly, 3>;
+
+// CGAL's algebraic numbers share reference-counted representations and caches; one query at a time.
+std::mutex& kernel_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+PVec operator-(const PVec& a, const PVec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+PVec cross(const PVec& a, const PVec& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Poly dot(const PVec& a, const PVec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/// Four points moving linearly, x(t) = x0 + t·(x1 − x0), as integer polynomials: every coordinate is scaled
+/// by the same power of two 2^−E, where 2^E is the smallest unit among the 24 input doubles.
+std::array<PVec, 4> exact_points(const std::array<Vec3, 4>& x0, const std::array<Vec3, 4>& x1) {
+  int unit = std::numeric_limits<int>::max();
+  auto split = [](double x, long long& mant, int& expo) {  // x = mant · 2^expo, |mant| < 2^53
+    int e = 0;
+    const double m = std::frexp(x, &e);
+    mant = static_cast<long long>(std::ldexp(m, 53));
+    expo = e - 53;
+  };
+  for (const auto* xs : {&x0, &x1})
+    for (const Vec3& p : *xs)
+      for (int i = 0; i < 3; ++i)
+        if (p[i] != 0) {
+          long long m = 0;
+          int e = 0;
+          split(p[i], m, e);
+          unit = std::min(unit, e);
+        }
+  auto to_int = [&](double x) {
+    if (x == 0) return Z(0);
+    long long m = 0;
+    int e = 0;
+    split(x, m, e);
+    Z z(static_cast<long>(m));
+    mpz_mul_2exp(z.mpz(), z.mpz(), static_cast<mp_bitcnt_t>(e - unit));
+    return z;
+  };
+  std::array<PVec, 4> out;
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < 3; ++i) {
+      const Z a = to_int(x0[k][i]), b = to_int(x1[k][i]);
+      out[k][i] = Poly(a, b - a);
+    }
+  return out;
+}
+
+/// Exact signs of polynomials at one algebraic time t.
+class AtTime {
+ public:
+  AtTime(const AK& ak, const Root& t) : sign_at_(ak.sign_at_1_object()), t_(t) {}
+  [[nodiscard]] int sign(const Poly& p) const { return CGAL::is_zero(p) ? 0 : int(sign_at_(p, t_)); }
+  [[nodiscard]] bool is_zero(const PVec& v) const { return sign(v[0]) == 0 && sign(v[1]) == 0 && sign(v[2]) == 0; }
+
+ private:
+  AK::Sign_at_1 sign_at_;
+  const Root& t_;
+};
+
+/// p on the closed segment [a, b] (a = b allowed).
+bool on_segment(const AtTime& at, const PVec& p, const PVec& a, const PVec& b) {
+  const PVec ap = a - p, bp = b - p;
+  return at.is_zero(cross(ap, bp)) && at.sign(dot(ap, bp)) <= 0;
+}
+
+/// v in the closed triangle (f0, f1, f2), the four points being coplanar at this time.
+bool vertex_in_face(const AtTime& at, const std::array<PVec, 4>& x) {
+  const PVec &v = x[0], &f0 = x[1], &f1 = x[2], &f2 = x[3];
+  const PVec n = cross(f1 - f0, f2 - f0);
+  if (!at.is_zero(n)) {
+    // Each sub-triangle (v, fi, fj) must be oriented like the face (or be flat).
+    return at.sign(dot(n, cross(f0 - v, f1 - v))) >= 0 && at.sign(dot(n, cross(f1 - v, f2 - v))) >= 0 &&
+           at.sign(dot(n, cross(f2 - v, f0 - v))) >= 0;
+  }
+  // Zero-area face: the union of its three (possibly zero-length) edges.
+  return on_segment(at, v, f0, f1) || on_segment(at, v, f1, f2) || on_segment(at, v, f2, f0);
+}
+
+/// Closed segments [a0, a1] and [b0, b1] intersect, the four points being coplanar at this time.
+bool edges_cross(const AtTime& at, const std::array<PVec, 4>& x) {
+  const PVec &a0 = x[0], &a1 = x[1], &b0 = x[2], &b1 = x[3];
+  const PVec da = a1 - a0, db = b1 - b0, n = cross(da, db);
+  if (!at.is_zero(n)) {  // not parallel: each segment's ends on both sides of (or on) the other's line
+    const int s0 = at.sign(dot(n, cross(da, b0 - a0))), s1 = at.sign(dot(n, cross(da, b1 - a0)));
+    if (s0 * s1 > 0) return false;
+    const int r0 = at.sign(dot(n, cross(db, a0 - b0))), r1 = at.sign(dot(n, cross(db, a1 - b0)));
+    return r0 * r1 <= 0;
+  }
+  // Parallel, collinear or degenerate: they meet iff an end point of one lies on the other.
+  return on_segment(at, a0, b0, b1) || on_segment(at, a1, b0, b1) || on_segment(at, b0, a0, a1) ||
+         on_segment(at, b1, a0, a1);
+}
+
+/// Real roots of p in [0, 1], appended to `out` (p ≢ 0).
+void roots_in_step(const AK& ak, const Poly& p, std::vector<Root>& out) {
+  std::vector<std::pair<Root, AK::Multiplicity_type>> roots;
+  ak.solve_1_object()(p, Q(0), Q(1), std::back_inserter(roots));
+  for (auto& r : roots) out.push_back(r.first);
+}
+
+ExactTester::Decision decide_points(const std::array<Vec3, 4>& x0, const std::array<Vec3, 4>& x1, bool edge_edge) {
+  const std::array<PVec, 4> x = exact_points(x0, x1);
+  // The coplanarity cubic f(t) = A·(B×C), with A, B, C as in interval_ccd.hpp.
+  const Poly f = edge_edge ? dot(x[2] - x[0], cross(x[1] - x[0], x[3] - x[2]))
+                           : dot(x[0] - x[1], cross(x[2] - x[1], x[3] - x[1]));
+
+  std::lock_guard lock(kernel_mutex());
+  AK ak;
+  std::vector<Root> times;
+  if (!CGAL::is_zero(f)) {
+    roots_in_step(ak, f, times);
+  } else {
+    // Coplanar throughout: the events where a pair of points coincides or a triple becomes collinear.
+    times.push_back(ak.construct_algebraic_real_1_object()(Z(0)));
+    times.push_back(ak.construct_algebraic_real_1_object()(Z(1)));
+    std::vector<PVec> events;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) events.push_back(x[j] - x[i]);
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        for (int k = j + 1; k < 4; ++k) events.push_back(cross(x[j] - x[i], x[k] - x[i]));
+    if (edge_edge) events.push_back(cross(x[1] - x[0], x[3] - x[2]));
+    for (const PVec& e : events)
+      for (const Poly& c : e)
+        if (!CGAL::is_zero(c)) roots_in_step(ak, c, times);
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end()), times.end());
+  }
+  for (const Root& t : times) {
+    const AtTime at(ak, t);
+    if (edge_edge ? edges_cross(at, x) : vertex_in_face(at, x)) {
+      const auto bounds = ak.approximate_absolute_1_object()(t, 64);  // |hi − lo| ≤ 2^−64
+      return {true, CGAL::to_interval(bounds.first).first, CGAL::to_interval(bounds.second).second, false};
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+ExactTester::Decision ExactTester::decide(const VertexFaceQuery& q) const {
+  if (params_.prefilter &&
+      interval_ccd::classify(interval_ccd::relative_motion(q), 0, 1) == interval_ccd::Verdict::separated)
+    return {false, 1, 1, true};
+  return decide_points({q.v_t0, q.f0_t0, q.f1_t0, q.f2_t0}, {q.v_t1, q.f0_t1, q.f1_t1, q.f2_t1}, false);
+}
+
+ExactTester::Decision ExactTester::decide(const EdgeEdgeQuery& q) const {
+  if (params_.prefilter &&
+      interval_ccd::classify(interval_ccd::relative_motion(q), 0, 1) == interval_ccd::Verdict::separated)
+    return {false, 1, 1, true};
+  return decide_points({q.ea0_t0, q.ea1_t0, q.eb0_t0, q.eb1_t0}, {q.ea0_t1, q.ea1_t1, q.eb0_t1, q.eb1_t1}, true);
+}
+
+CcdHit ExactTester::vertex_face(const VertexFaceQuery& q) const {
+  const Decision d = decide(q);
+  CcdHit h;
+  h.route = d.prefiltered ? TestRoute::filter : TestRoute::main;
+  if (!d.hit) return h;
+  h.hit = true;
+  h.toi = d.toi_lo;
+  auto at = [&](const Vec3& a, const Vec3& b) -> Vec3 { return a + d.toi_lo * (b - a); };
+  const auto c = closest_point_triangle(at(q.v_t0, q.v_t1), at(q.f0_t0, q.f0_t1), at(q.f1_t0, q.f1_t1), at(q.f2_t0, q.f2_t1));
+  h.coords = {c.bary[1], c.bary[2]};
+  return h;
+}
+
+CcdHit ExactTester::edge_edge(const EdgeEdgeQuery& q) const {
+  const Decision d = decide(q);
+  CcdHit h;
+  h.route = d.prefiltered ? TestRoute::filter : TestRoute::main;
+  if (!d.hit) return h;
+  h.hit = true;
+  h.toi = d.toi_lo;
+  auto at = [&](const Vec3& a, const Vec3& b) -> Vec3 { return a + d.toi_lo * (b - a); };
+  const auto c = closest_segment_segment(at(q.ea0_t0, q.ea0_t1), at(q.ea1_t0, q.ea1_t1), at(q.eb0_t0, q.eb0_t1), at(q.eb1_t0, q.eb1_t1));
+  h.coords = {c.s, c.t};
+  return h;
+}
+
+}  // namespace ccdlab

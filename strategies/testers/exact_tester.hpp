@@ -1,0 +1,49 @@
+#pragma once
+// `exact`: the reference checker. Decides every elementary query (zero thickness, linear motion over
+// t ∈ [0, 1]) exactly, with CGAL's univariate algebraic kernel on GMP integers — no tolerance anywhere.
+//
+// Inputs are doubles, hence dyadic rationals: scaled by one common power of two they become integers, and
+// every quantity below is a polynomial in t with integer coefficients (signs do not change under the scaling).
+//  * If the coplanarity cubic f(t) is not identically zero, contact can only happen at its real roots in
+//    [0, 1]; each root is isolated exactly and the "point in triangle" / "segments cross" predicate is
+//    evaluated there by exact signs of polynomials at an algebraic number (CGAL Sign_at_1).
+//  * If f ≡ 0 (the four points stay coplanar: coplanar motion, parallel or collinear edges, zero-area
+//    faces, no motion), the set of contact times is closed and the predicate's truth can only change where a
+//    pair of points coincides or a triple becomes collinear; so the predicate is evaluated at t = 0, t = 1
+//    and at every root of those polynomials' coordinates. The earliest time it holds is the time of contact.
+// The predicates handle degenerate faces (a segment or a point) and degenerate edges (a point) explicitly.
+// Time of contact: the exact algebraic root, reported as a double interval [toi_lo, toi_hi] enclosing it.
+//
+// An interval prefilter (the certified Bernstein bound of interval_ccd.hpp, which proves "no coplanarity
+// and no crossing in [0, 1]") answers most non-colliding queries without GMP; it never changes an answer.
+#include "framework/primitive/tester.hpp"
+
+namespace ccdlab {
+
+class ExactTester final : public PrimitiveTester {
+ public:
+  struct Params {
+    bool prefilter = true;  ///< decide certainly-separated queries with interval arithmetic first
+  };
+  /// The exact answer; toi_lo ≤ exact time of contact ≤ toi_hi (both 1 when there is no hit).
+  struct Decision {
+    bool hit = false;
+    double toi_lo = 1.0, toi_hi = 1.0;
+    bool prefiltered = false;  ///< decided by the interval prefilter
+  };
+
+  ExactTester() = default;
+  explicit ExactTester(Params p) : params_(p) {}
+  [[nodiscard]] std::string_view name() const override { return "exact"; }
+  [[nodiscard]] double thickness() const override { return 0.0; }
+  [[nodiscard]] CcdHit vertex_face(const VertexFaceQuery& q) const override;
+  [[nodiscard]] CcdHit edge_edge(const EdgeEdgeQuery& q) const override;
+
+  [[nodiscard]] Decision decide(const VertexFaceQuery& q) const;
+  [[nodiscard]] Decision decide(const EdgeEdgeQuery& q) const;
+
+ private:
+  Params params_{};
+};
+
+}  // namespace ccdlab
