@@ -2,7 +2,7 @@
 // Interval: a closed interval of doubles that encloses the exact result of every operation on it.
 //
 // Each operation is computed in the default round-to-nearest mode and its bounds are then pushed outward by
-// at least one ulp (`widen_down` / `widen_up`; an underflowing product by the smallest subnormal). The exact result lies within half an ulp of the rounded one,
+// at least one ulp (`widen_down` / `widen_up`; a product bound below the normal range by the smallest subnormal). The exact result lies within half an ulp of the rounded one,
 // so the widened interval contains it — without switching the FPU rounding mode, so it is safe under
 // -march=native, FMA contraction (which only makes the rounded value more accurate) and OpenMP threads.
 // Overflow gives ±inf bounds and inf − inf gives NaN; every `certainly_*` predicate is false on NaN, so an
@@ -22,11 +22,6 @@ constexpr double kUlpFactor = 0x1p-52;  // ≥ ulp(x) / |x| for every normal x
 inline double widen_down(double x) { return x - std::abs(x) * kUlpFactor; }
 /// A double ≥ x + ulp(x) for normal x.
 inline double widen_up(double x) { return x + std::abs(x) * kUlpFactor; }
-/// Absolute error bound of a product p = a·b that may have underflowed: p is exact when a or b is zero;
-/// otherwise a result below the normal range can be off by up to half the smallest subnormal.
-inline double underflow_slack(double p, double a, double b) {
-  return (std::abs(p) < std::numeric_limits<double>::min() && a != 0 && b != 0) ? std::numeric_limits<double>::denorm_min() : 0.0;
-}
 }  // namespace detail
 
 struct Interval {
@@ -51,12 +46,17 @@ inline Interval operator-(Interval a, Interval b) {
 }
 inline Interval operator-(Interval a) { return {-a.hi, -a.lo}; }  // exact
 inline Interval operator*(Interval a, Interval b) {
+  // An exact zero stays exact (coordinates that do not move give many of them).
+  if ((a.lo == 0 && a.hi == 0) || (b.lo == 0 && b.hi == 0)) return {0.0, 0.0};
   const double p0 = a.lo * b.lo, p1 = a.lo * b.hi, p2 = a.hi * b.lo, p3 = a.hi * b.hi;
   const double lo = std::min(std::min(p0, p1), std::min(p2, p3)), hi = std::max(std::max(p0, p1), std::max(p2, p3));
-  // Underflow can only occur where some product is tiny; then widen by the subnormal step (rare path).
-  const double slack = std::max({detail::underflow_slack(p0, a.lo, b.lo), detail::underflow_slack(p1, a.lo, b.hi),
-                                 detail::underflow_slack(p2, a.hi, b.lo), detail::underflow_slack(p3, a.hi, b.hi)});
-  return {detail::widen_down(lo) - slack, detail::widen_up(hi) + slack};
+  Interval r{detail::widen_down(lo), detail::widen_up(hi)};
+  // A bound below the normal range may come from a product that underflowed (error up to half the smallest
+  // subnormal); a normal bound cannot (every product beyond it is normal, or tiny and inside it). Rare path.
+  constexpr double kMin = std::numeric_limits<double>::min(), kSub = std::numeric_limits<double>::denorm_min();
+  if (std::abs(lo) < kMin) r.lo -= kSub;
+  if (std::abs(hi) < kMin) r.hi += kSub;
+  return r;
 }
 /// Hull of two intervals.
 inline Interval hull(Interval a, Interval b) { return {std::min(a.lo, b.lo), std::max(a.hi, b.hi)}; }

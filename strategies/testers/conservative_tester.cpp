@@ -13,6 +13,8 @@ using interval_ccd::Verdict;
 
 /// Smallest window worth splitting: t has about 53 bits in [0, 1].
 constexpr double kMinWidth = 0x1p-50;
+/// Width to which roots of f are isolated (f only) before the inside / crossing conditions are examined.
+constexpr double kIsolationWidth = 0x1p-6;
 
 struct Window {
   double tl, th;
@@ -50,21 +52,13 @@ ConservativeTester::Fallback ConservativeTester::parse_fallback(const std::strin
 }
 
 double ConservativeTester::earliest_root(const interval_ccd::RelativeMotion& m, double tl, double th) const {
-  WindowStack stack;
-  stack.push({tl, th});
-  while (!stack.empty()) {
-    const Window w = stack.pop();
-    if (interval_ccd::classify(m, w.tl, w.th, /*coplanarity_only=*/true) == Verdict::separated) continue;
-    if (w.th - w.tl <= std::max(params_.toi_tolerance, kMinWidth) || stack.full()) return w.tl;
-    const double mid = 0.5 * (w.tl + w.th);
-    stack.push({mid, w.th});
-    stack.push({w.tl, mid});
-  }
-  return tl;  // unreachable in exact arithmetic (a root was proven in [tl, th]); tl is still a lower bound
+  const double t = interval_ccd::earliest_coplanarity(m, tl, th, std::max(params_.toi_tolerance, kMinWidth));
+  return t < th ? t : tl;  // f ≠ 0 throughout cannot happen where a root was proven; tl stays a lower bound
 }
 
 template <class Query>
 CcdHit ConservativeTester::search(const Query& q) const {
+  if (interval_ccd::certainly_never_coplanar(q)) return {};
   const interval_ccd::RelativeMotion m = interval_ccd::relative_motion(q);
   // Width at which a window counts as resolved: the features move at most δ·L within it.
   const double min_width = m.motion > 0 ? std::max(params_.delta * m.extent / m.motion, kMinWidth) : 1.0;
@@ -82,29 +76,48 @@ CcdHit ConservativeTester::search(const Query& q) const {
     h.route = TestRoute::fallback;
     return h.hit ? with_coords(h, q) : h;
   };
-  WindowStack stack;
-  stack.push({0.0, 1.0});
-  int visited = 0;
-  while (!stack.empty()) {
-    const Window w = stack.pop();
-    if (++visited > params_.max_windows) return undecided(w.tl, w.th);
-    switch (interval_ccd::classify(m, w.tl, w.th)) {
-      case Verdict::separated:
-        continue;
-      case Verdict::contact: {
-        CcdHit h;
-        h.hit = true;
-        h.toi = earliest_root(m, w.tl, w.th);
-        return with_coords(h, q);
-      }
-      case Verdict::unknown:
-        if (w.th - w.tl <= min_width || stack.full()) return undecided(w.tl, w.th);
-        const double mid = 0.5 * (w.tl + w.th);
-        stack.push({mid, w.th});
-        stack.push({w.tl, mid});
+  // The whole step first: it settles most queries, including coplanar motion kept apart (separating axes).
+  switch (interval_ccd::classify(m, 0.0, 1.0)) {
+    case Verdict::separated:
+      return {};
+    case Verdict::contact: {
+      CcdHit h;
+      h.hit = true;
+      h.toi = earliest_root(m, 0.0, 1.0);
+      return with_coords(h, q);
     }
+    case Verdict::unknown:
+      break;
   }
-  return {};
+  // Then coplanarity windows (cheap, f only), earliest first; the full classification only inside them.
+  const double isolation_width = std::max(kIsolationWidth, min_width);
+  int visited = 0;
+  CcdHit result;
+  bool decided = false;
+  interval_ccd::for_each_coplanarity_window(m, 0.0, 1.0, isolation_width, [&](double a, double b) {
+    WindowStack stack;
+    stack.push({a, b});
+    while (!stack.empty()) {
+      const Window w = stack.pop();
+      if (++visited > params_.max_windows) return decided = true, result = undecided(w.tl, w.th), true;
+      switch (interval_ccd::classify(m, w.tl, w.th)) {
+        case Verdict::separated:
+          continue;
+        case Verdict::contact:
+          result.hit = true;
+          result.toi = earliest_root(m, w.tl, w.th);
+          result = with_coords(result, q);
+          return decided = true;
+        case Verdict::unknown:
+          if (w.th - w.tl <= min_width || stack.full()) return decided = true, result = undecided(w.tl, w.th), true;
+          const double mid = 0.5 * (w.tl + w.th);
+          stack.push({mid, w.th});
+          stack.push({w.tl, mid});
+      }
+    }
+    return false;  // no contact in this window: on to the next
+  });
+  return decided ? result : CcdHit{};
 }
 
 CcdHit ConservativeTester::vertex_face(const VertexFaceQuery& q) const { return search(q); }

@@ -167,15 +167,15 @@ ExactTester::Decision decide_points(const std::array<Vec3, 4>& x0, const std::ar
 }  // namespace
 
 ExactTester::Decision ExactTester::decide(const VertexFaceQuery& q) const {
-  if (params_.prefilter &&
-      interval_ccd::classify(interval_ccd::relative_motion(q), 0, 1) == interval_ccd::Verdict::separated)
+  if (params_.prefilter && (interval_ccd::certainly_never_coplanar(q) ||
+                            interval_ccd::classify(interval_ccd::relative_motion(q), 0, 1) == interval_ccd::Verdict::separated))
     return {false, 1, 1, true};
   return decide_points({q.v_t0, q.f0_t0, q.f1_t0, q.f2_t0}, {q.v_t1, q.f0_t1, q.f1_t1, q.f2_t1}, false);
 }
 
 ExactTester::Decision ExactTester::decide(const EdgeEdgeQuery& q) const {
-  if (params_.prefilter &&
-      interval_ccd::classify(interval_ccd::relative_motion(q), 0, 1) == interval_ccd::Verdict::separated)
+  if (params_.prefilter && (interval_ccd::certainly_never_coplanar(q) ||
+                            interval_ccd::classify(interval_ccd::relative_motion(q), 0, 1) == interval_ccd::Verdict::separated))
     return {false, 1, 1, true};
   return decide_points({q.ea0_t0, q.ea1_t0, q.eb0_t0, q.eb1_t0}, {q.ea0_t1, q.ea1_t1, q.eb0_t1, q.eb1_t1}, true);
 }

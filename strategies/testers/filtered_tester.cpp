@@ -7,7 +7,8 @@ namespace {
 
 template <class Query>
 bool certainly_separated(const Query& q) {
-  return interval_ccd::classify(interval_ccd::relative_motion(q), 0.0, 1.0) == interval_ccd::Verdict::separated;
+  return interval_ccd::certainly_never_coplanar(q) ||
+         interval_ccd::classify(interval_ccd::relative_motion(q), 0.0, 1.0) == interval_ccd::Verdict::separated;
 }
 
 CcdHit culled() {

@@ -116,7 +116,96 @@ double extent_of(const std::array<const Vec3*, N>& pts) {
   return box.extent().norm();
 }
 
+/// Separating-axis test over the window, for the configurations where the sign tests above degenerate:
+/// parallel or collinear edges, zero-area faces, coplanar motion (there f ≡ 0 and n ≈ 0). The axes are
+/// chosen in plain double at mid-window (any axis is valid); the projections are linear in t, so their range
+/// over the window is the hull of the two ends, computed with intervals — the test itself is certified.
+bool separated_along_axes(const RelativeMotion& m, const LinVec& A, const LinVec& B, const LinVec& C) {
+  auto mid = [](const LinVec& v) {
+    return Vec3(0.25 * (v[0][0].lo + v[0][0].hi + v[0][1].lo + v[0][1].hi), 0.25 * (v[1][0].lo + v[1][0].hi + v[1][1].lo + v[1][1].hi),
+                0.25 * (v[2][0].lo + v[2][0].hi + v[2][1].lo + v[2][1].hi));
+  };
+  const Vec3 a = mid(A), b = mid(B), c = mid(C), n = b.cross(c);
+  // Feature points relative to the reference point: edge–edge {0, B} vs {A, A + C}; vertex–face {A} vs {0, B, C}.
+  auto project = [&](const Vec3& axis, const LinVec& v, int end) {
+    return Interval(axis.x()) * v[0][end] + Interval(axis.y()) * v[1][end] + Interval(axis.z()) * v[2][end];
+  };
+  auto apart = [&](const Vec3& axis) {
+    if (!(axis.squaredNorm() > 0) || !axis.allFinite()) return false;
+    Interval first, second;  // ranges of the two features over the window
+    bool init1 = false, init2 = false;
+    auto add = [](Interval& range, bool& init, Interval x) { range = init ? hull(range, x) : x, init = true; };
+    for (int end = 0; end < 2; ++end) {
+      const Interval pa = project(axis, A, end), pb = project(axis, B, end), pc = project(axis, C, end);
+      if (m.edge_edge) {
+        add(first, init1, Interval(0.0)), add(first, init1, pb);
+        add(second, init2, pa), add(second, init2, pa + pc);
+      } else {
+        add(first, init1, pa);
+        add(second, init2, Interval(0.0)), add(second, init2, pb), add(second, init2, pc);
+      }
+    }
+    return first.hi < second.lo || second.hi < first.lo;
+  };
+  if (m.edge_edge) {
+    // Edge directions (collinear, end to end), the common normal, and the perpendicular from line a to b0.
+    return apart(b) || apart(c) || apart(n) || apart(b.cross(b.cross(a))) || apart(c.cross(c.cross(a - b)));
+  }
+  // The face's edge directions, its in-plane edge normals, and for a flat face the perpendiculars to its edges.
+  const Vec3 e = c - b;
+  return apart(n.cross(b)) || apart(c.cross(n)) || apart(e.cross(n)) || apart(b) || apart(c) || apart(e) ||
+         apart(b.cross(b.cross(a))) || apart(c.cross(c.cross(a)));
+}
+
+/// x / 2, enclosing the exact half even when it falls below the normal range.
+Interval half(Interval x) {
+  Interval r{x.lo * 0.5, x.hi * 0.5};
+  constexpr double kMin = std::numeric_limits<double>::min(), kSub = std::numeric_limits<double>::denorm_min();
+  if (r.lo != 0 && std::abs(r.lo) < kMin) r.lo -= kSub;
+  if (r.hi != 0 && std::abs(r.hi) < kMin) r.hi += kSub;
+  return r;
+}
+
+/// |a| ×' |b|: the cross product's terms in absolute value, summed (bounds |a × b| and its rounding).
+Vec3 cross_abs(const Vec3& a, const Vec3& b) {
+  const Vec3 x = a.cwiseAbs(), y = b.cwiseAbs();
+  return {x.y() * y.z() + x.z() * y.y(), x.z() * y.x() + x.x() * y.z(), x.x() * y.y() + x.y() * y.x()};
+}
+
+/// Scaled Bernstein coefficients of f = A·(B×C) on [0, 1] from the vectors at t = 0 and t = 1, in double,
+/// with an error bound. Each coefficient is a sum of ≤ 18 products of three differences of inputs; along any
+/// term at most 10 roundings occur (3 input differences, 2 products, 5 sums), so the computed value is within
+/// γ₁₀·Σ|terms| ≤ 11u·(the same sum evaluated on absolute values) of the exact one (Higham, "Accuracy and
+/// Stability of Numerical Algorithms", §3.1). We use 2⁻⁴⁸ = 32u, a margin of 3×.
+bool one_signed_on_step(const Vec3& A0, const Vec3& B0, const Vec3& C0, const Vec3& A1, const Vec3& B1, const Vec3& C1) {
+  const Vec3 n0 = B0.cross(C0), n1 = B0.cross(C1) + B1.cross(C0), n2 = B1.cross(C1);
+  const Vec3 m0 = cross_abs(B0, C0), m1 = cross_abs(B0, C1) + cross_abs(B1, C0), m2 = cross_abs(B1, C1);
+  const Vec3 a0 = A0.cwiseAbs(), a1 = A1.cwiseAbs();
+  const double f[4] = {A0.dot(n0), A0.dot(n1) + A1.dot(n0), A0.dot(n2) + A1.dot(n1), A1.dot(n2)};
+  const double g[4] = {a0.dot(m0), a0.dot(m1) + a1.dot(m0), a0.dot(m2) + a1.dot(m1), a1.dot(m2)};
+  constexpr double kRelative = 0x1p-48;
+  constexpr double kSmallest = 1e-250;  // below this, products may have underflowed: not certain
+  bool pos = true, neg = true;
+  for (int k = 0; k < 4; ++k) {
+    if (!(g[k] >= kSmallest) || !std::isfinite(g[k])) return false;
+    const double err = kRelative * g[k];
+    pos = pos && f[k] > err;
+    neg = neg && f[k] < -err;
+  }
+  return pos || neg;
+}
+
 }  // namespace
+
+bool certainly_never_coplanar(const VertexFaceQuery& q) {
+  return one_signed_on_step(q.v_t0 - q.f0_t0, q.f1_t0 - q.f0_t0, q.f2_t0 - q.f0_t0, q.v_t1 - q.f0_t1,
+                            q.f1_t1 - q.f0_t1, q.f2_t1 - q.f0_t1);
+}
+
+bool certainly_never_coplanar(const EdgeEdgeQuery& q) {
+  return one_signed_on_step(q.eb0_t0 - q.ea0_t0, q.ea1_t0 - q.ea0_t0, q.eb1_t0 - q.eb0_t0, q.eb0_t1 - q.ea0_t1,
+                            q.ea1_t1 - q.ea0_t1, q.eb1_t1 - q.eb0_t1);
+}
 
 RelativeMotion relative_motion(const VertexFaceQuery& q) {
   const double L = extent_of<8>({&q.v_t0, &q.f0_t0, &q.f1_t0, &q.f2_t0, &q.v_t1, &q.f0_t1, &q.f1_t1, &q.f2_t1});
@@ -146,13 +235,54 @@ Verdict classify(const RelativeMotion& m, double tl, double th, bool coplanarity
     const Poly<4> r = nn - u - w;
     if (all_negative(u) || all_negative(w) || all_negative(r)) return Verdict::separated;
     if (root && all_positive(u) && all_positive(w) && all_positive(r)) return Verdict::contact;
-    return Verdict::unknown;
+    // Only a (nearly) flat face makes the sign tests blind; then try separating axes.
+    return !all_positive(nn) && separated_along_axes(m, A, B, C) ? Verdict::separated : Verdict::unknown;
   }
   const Poly<4> u_end = u + nn, w_end = w - nn;
   // b0, b1 strictly on one side of edge a's line (u and u + nn of one sign; nn ≥ 0), or a0, a1 of edge b's.
   if (all_positive(u) || all_negative(u_end) || all_negative(w) || all_positive(w_end)) return Verdict::separated;
   if (root && all_negative(u) && all_positive(u_end) && all_positive(w) && all_negative(w_end)) return Verdict::contact;
-  return Verdict::unknown;
+  // Only (nearly) parallel or degenerate edges make the sign tests blind; then try separating axes.
+  return !all_positive(nn) && separated_along_axes(m, A, B, C) ? Verdict::separated : Verdict::unknown;
+}
+
+bool for_each_coplanarity_window(const RelativeMotion& m, double tl, double th, double width,
+                                 const std::function<bool(double, double)>& visit) {
+  const LinVec A = on_window(m.A0, m.dA, tl, th), B = on_window(m.B0, m.dB, tl, th), C = on_window(m.C0, m.dC, tl, th);
+  const Poly<3> scaled = dot(A, cross(B, C));
+  // Three times the Bernstein coefficients (C(3,1) = C(3,2) = 3): one positive factor, same signs.
+  struct Node {
+    Poly<3> b;
+    double tl, th;
+  };
+  std::array<Node, 64> stack;
+  int n = 0;
+  stack[n++] = {Poly<3>{{Interval(3.0) * scaled[0], scaled[1], scaled[2], Interval(3.0) * scaled[3]}}, tl, th};
+  while (n > 0) {
+    const Node node = stack[--n];
+    if (all_positive(node.b) || all_negative(node.b)) continue;
+    if (node.th - node.tl <= width || n + 2 > int(stack.size())) {
+      if (visit(node.tl, node.th)) return true;
+      continue;
+    }
+    // de Casteljau at the midpoint: left and right halves' coefficients.
+    const Poly<3>& b = node.b;
+    const Interval m01 = half(b[0] + b[1]), m12 = half(b[1] + b[2]), m23 = half(b[2] + b[3]);
+    const Interval m012 = half(m01 + m12), m123 = half(m12 + m23), mid = half(m012 + m123);
+    const double tm = 0.5 * (node.tl + node.th);
+    stack[n++] = {Poly<3>{{mid, m123, m23, b[3]}}, tm, node.th};
+    stack[n++] = {Poly<3>{{b[0], m01, m012, mid}}, node.tl, tm};
+  }
+  return false;
+}
+
+double earliest_coplanarity(const RelativeMotion& m, double tl, double th, double width) {
+  double first = th;
+  for_each_coplanarity_window(m, tl, th, width, [&](double a, double) {
+    first = a;
+    return true;
+  });
+  return first;
 }
 
 }  // namespace ccdlab::interval_ccd
