@@ -36,7 +36,7 @@ StrategyChoice parse_tester(const std::string& spec, const TesterRegistry& regis
       const std::string kv = rest.substr(pos, comma - pos);
       const auto eq = kv.find('=');
       if (eq == std::string::npos || eq == 0) fail("--tester {}: expected name:key=value,…, got '{}'", spec, kv);
-      node[kv.substr(0, eq)] = YAML::Load(kv.substr(eq + 1));
+      node[kv.substr(0, eq)] = kv.substr(eq + 1);  // a plain scalar: no file position in errors
       pos = comma + 1;
     }
   }
@@ -83,6 +83,16 @@ int validate_command(const ValidateOptions& o) {
 
   const ExactTester exact;
   std::vector<SetScore> scores;
+  // Per-query outcomes (for plots of the time distribution), written as they come when --out is given.
+  std::ofstream per_query;
+  if (!o.out_dir.empty()) {
+    std::error_code ec;
+    fs::create_directories(o.out_dir, ec);
+    if (ec) fail("--out: cannot create '{}': {}", o.out_dir, ec.message());
+    per_query.open(fs::path(o.out_dir) / "queries.csv");
+    if (!per_query) fail("--out: cannot write into '{}'", o.out_dir);
+    per_query << "set,tester,query,truth,hit,route,us,toi,exact_toi\n";
+  }
   std::size_t total = 0;
   for (const auto& s : sets) total += s.size();
   Progress progress("validate", long(total * (testers.size() + 1)), o.progress);
@@ -97,6 +107,11 @@ int validate_command(const ValidateOptions& o) {
     for (std::size_t t = 0; t < testers.size(); ++t) {
       const auto outcomes = run_tester(*testers[t], set, o.repeat);
       scores.push_back(score(set, names[t], outcomes, reference));
+      if (per_query.is_open())
+        for (std::size_t i = 0; i < outcomes.size(); ++i)
+          per_query << fmt::format("{},{},{},{},{},{},{:.4f},{:.17g},{:.17g}\n", set.name, names[t], i, int(set.truth[i]),
+                                   int(outcomes[i].hit), int(outcomes[i].route), outcomes[i].us, outcomes[i].toi,
+                                   reference[i].hit ? reference[i].toi_lo : 1.0);
       progress.update(done += long(set.size()));
     }
   }
@@ -109,9 +124,6 @@ int validate_command(const ValidateOptions& o) {
   }
 
   if (!o.out_dir.empty()) {
-    std::error_code ec;
-    fs::create_directories(o.out_dir, ec);
-    if (ec) fail("--out: cannot create '{}': {}", o.out_dir, ec.message());
     std::ofstream csv(fs::path(o.out_dir) / "validate.csv"), jsonl(fs::path(o.out_dir) / "validate.jsonl");
     if (!csv || !jsonl) fail("--out: cannot write into '{}'", o.out_dir);
     csv << "set,tester,queries,positives,false_negatives,false_positives,filtered,fallbacks,mean_us,median_us,p99_us,"

@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
   validate_cmd->add_option("--tester", validate.testers, "tester, e.g. float or conservative:delta=1e-4,fallback=exact (repeatable)")
       ->capture_default_str();
   validate_cmd->add_option("--repeat", validate.repeat, "time each query this many times, keep the fastest")->capture_default_str();
-  validate_cmd->add_option("--out", validate.out_dir, "write validate.csv and validate.jsonl into this folder");
+  validate_cmd->add_option("--out", validate.out_dir, "write validate.csv, validate.jsonl and queries.csv (per query) into this folder");
   validate_cmd->add_option("--failures", validate.failures, "list up to N wrong answers per tester and set");
   validate_cmd->add_flag("--check", validate.check, "exit 1 if exact disagrees with the truth or conservative misses");
   validate_cmd->add_flag("--json", validate.json, "print JSON instead of the table");

@@ -1,0 +1,42 @@
+"""pytest for analysis/plot_accuracy.py on a small results folder made here."""
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+import plot_accuracy  # noqa: E402
+
+
+def make_results(folder: Path) -> Path:
+    folder.mkdir(parents=True, exist_ok=True)
+    rows = ["set,tester,query,truth,hit,route,us,toi,exact_toi"]
+    for tester, wrong in (("float", 1), ("exact", 0)):
+        for i in range(20):
+            truth = i % 2
+            hit = truth if i >= wrong else 1 - truth  # `wrong` answers at the start
+            for name in ("handcrafted/a/edge-edge", "simulation/funnel/1ee"):
+                rows.append(f"{name},{tester},{i},{truth},{hit},0,{0.5 + i * 0.1},0.25,0.25")
+    (folder / "queries.csv").write_text("\n".join(rows) + "\n")
+    (folder / "pipeline.csv").write_text("round,tester,ms_per_step,contacts_vf,contacts_ee,hash\n"
+                                         "1,float,50.0,10,20,abc\n2,float,52.0,10,20,abc\n1,exact,190.0,10,20,abc\n")
+    return folder
+
+
+def test_summary_counts_misses_and_false_hits(tmp_path):
+    import pandas as pd
+    summary = plot_accuracy.summarize(pd.read_csv(make_results(tmp_path / "r") / "queries.csv"))
+    row = summary[(summary.tester == "float") & (summary.group == "funnel")].iloc[0]
+    assert row.queries == 20 and row.FN + row.FP == 1
+    assert summary[summary.tester == "exact"].FN.sum() == 0
+
+
+def test_plot_and_tables_are_written(tmp_path, capsys):
+    folder = make_results(tmp_path / "r")
+    assert plot_accuracy.main([str(folder)]) == 0
+    assert (folder / "accuracy_time.png").stat().st_size > 1000
+    out = capsys.readouterr().out
+    assert "### handcrafted (Wang et al.)" in out and "| float | 51.0 | 50.0 | 30 | abc |" in out
+
+
+def test_missing_file_is_a_clear_error(tmp_path, capsys):
+    assert plot_accuracy.main([str(tmp_path)]) == 2
+    assert "queries.csv: not found" in capsys.readouterr().err
