@@ -85,6 +85,7 @@ def plot(summary: pd.DataFrame, out: Path) -> Path:
                         label=f"{tester} ({label})" if ax is axes.flat[0] else None)
         ax.set_xscale("log")
         ax.set_yscale("log")
+        ax.set_ylim(0.7, max(10.0, float(max(rows.FN.max(), rows.FP.max()) + 1) * 1.5))
         ax.set_title(f"{group} ({int(rows.queries.iloc[0])} queries)", fontsize=9)
         ax.set_xlabel("µs per query (median, whisker to p99)")
         ax.set_ylabel("wrong answers + 1")

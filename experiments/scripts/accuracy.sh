@@ -33,7 +33,8 @@ for r in $(seq 1 "$rounds"); do
   for t in "${order[@]}"; do
     json=$(build/bin/ccdlab run experiments/configs/default.yaml --json --no-progress --set tester=$t \
              --set "output.dir=$out/runs/$t")
-    /usr/bin/python3 -c 'import json,sys; d=json.loads(sys.argv[1]); print(f"{sys.argv[2]},{sys.argv[3]},{d[\"ms_per_step\"]},{d[\"contacts\"][\"vf\"]},{d[\"contacts\"][\"ee\"]},{d[\"hash\"]}")' \
+    /usr/bin/python3 -c 'import json, sys; d = json.loads(sys.argv[1]); c = d["contacts"]
+print(",".join(map(str, [sys.argv[2], sys.argv[3], d["ms_per_step"], c["vf"], c["ee"], d["hash"]])))' \
       "$json" "$r" "$t" >> "$out/pipeline.csv"
     echo "round $r $t: $(tail -1 "$out/pipeline.csv")" >&2
   done
