@@ -1,6 +1,6 @@
 // Micro-benchmarks of the sequential pipeline's phases, per K, on one step of the built-in drape_fold scene
 // (the step with the most candidates of the default run). Run: build/bin/ccdlab_microbench
-//   --benchmark_filter=Traverse   (or SweptBv, Refit, Step, FloatTester)
+//   --benchmark_filter=Traverse   (or SweptBv, Refit, Step, FloatTester, Tester)
 // Google Benchmark interleaves nothing by itself: compare ratios within one invocation.
 #include <benchmark/benchmark.h>
 
@@ -9,6 +9,7 @@
 #include "framework/traversal/bvtt.hpp"
 #include "strategies/registry.hpp"
 #include "strategies/scenes/drape_fold_scene.hpp"
+#include "framework/queries/hard_cases.hpp"
 #include "strategies/testers/float_tester.hpp"
 
 namespace ccdlab {
@@ -97,6 +98,43 @@ void BM_FloatTesterEdgeEdge(benchmark::State& state) {
   state.counters["hit_rate"] = double(hits) / double(state.iterations());
 }
 BENCHMARK(BM_FloatTesterEdgeEdge);
+
+// The accuracy ladder on random edge–edge queries (mostly separated: the filters' case) and on every built-in
+// hard case (degenerate: the expensive paths). Arg: 0 float, 1 filtered, 2 conservative, 3 exact.
+const char* const kTesters[] = {"float", "filtered", "conservative", "exact"};
+std::unique_ptr<PrimitiveTester> make_tester(int i) {
+  return tester_registry().make({kTesters[i], tester_registry().find(kTesters[i])->defaults()});
+}
+
+void BM_TesterRandomEdgeEdge(benchmark::State& state) {
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<EdgeEdgeQuery> queries(4096);
+  for (auto& q : queries)
+    for (Vec3* p : {&q.ea0_t0, &q.ea1_t0, &q.eb0_t0, &q.eb1_t0, &q.ea0_t1, &q.ea1_t1, &q.eb0_t1, &q.eb1_t1})
+      *p = Vec3(u(rng), u(rng), u(rng));
+  const auto t = make_tester(int(state.range(0)));
+  std::size_t i = 0, hits = 0;
+  for (auto _ : state) hits += t->edge_edge(queries[i++ & 4095]).hit;
+  state.SetLabel(kTesters[state.range(0)]);
+  state.counters["hit_rate"] = double(hits) / double(state.iterations());
+}
+BENCHMARK(BM_TesterRandomEdgeEdge)->DenseRange(0, 3);
+
+void BM_TesterHardCases(benchmark::State& state) {
+  static const std::vector<QuerySet> sets = hard_case_sets();
+  const auto t = make_tester(int(state.range(0)));
+  std::size_t queries = 0;
+  for (auto _ : state)
+    for (const QuerySet& s : sets) {
+      for (const auto& q : s.vf) benchmark::DoNotOptimize(t->vertex_face(q));
+      for (const auto& q : s.ee) benchmark::DoNotOptimize(t->edge_edge(q));
+      queries += s.size();
+    }
+  state.SetLabel(kTesters[state.range(0)]);
+  state.SetItemsProcessed(std::int64_t(queries));
+}
+BENCHMARK(BM_TesterHardCases)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace ccdlab
