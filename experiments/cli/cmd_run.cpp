@@ -68,7 +68,8 @@ int run_command(const RunOptions& o) {
   const bool table_on_terminal = !o.json && isatty(STDOUT_FILENO);
   Progress progress("ccdlab run", scene.num_steps(), o.progress && Progress::stderr_is_terminal() && !table_on_terminal);
   std::vector<double> total_ms, build_ms, cones_ms, swept_ms, refit_ms, traverse_ms, narrow_ms, orphan_ms;
-  std::uint64_t hash = contact_set_hash({}), vf = 0, ee = 0, bv_tests = 0, candidates = 0, vf_tests = 0, ee_tests = 0, orphan_pairs = 0, orphan_tests = 0;
+  std::uint64_t hash = contact_set_hash({}), vf = 0, ee = 0, bv_tests = 0, candidates = 0, vf_tests = 0, ee_tests = 0, orphan_pairs = 0, orphan_tests = 0,
+                tests_filtered = 0, tests_fallback = 0;
   Positions x_t0 = scene.frame(0);
   for (int s = 0; s < scene.num_steps(); ++s) {
     Positions x_t1 = scene.frame(s + 1);
@@ -83,6 +84,8 @@ int run_command(const RunOptions& o) {
     ee_tests += r.counters.ee_tests;
     orphan_pairs += r.counters.orphan_vf + r.counters.orphan_ee;
     orphan_tests += r.counters.orphan_tests;
+    tests_filtered += r.counters.tests_filtered;
+    tests_fallback += r.counters.tests_fallback;
     total_ms.push_back(r.timings.total_ms);
     build_ms.push_back(r.timings.build_ms);
     cones_ms.push_back(r.timings.cones_ms);
@@ -125,7 +128,8 @@ int run_command(const RunOptions& o) {
         {"orphans", median(orphan_ms)}}},
       {"contacts", {{"vf", vf}, {"ee", ee}}},
       {"counters", {{"bv_tests", bv_tests}, {"candidate_pairs", candidates}, {"vf_tests", vf_tests}, {"ee_tests", ee_tests},
-                    {"orphan_pairs", orphan_pairs}, {"orphan_tests", orphan_tests}}},
+                    {"orphan_pairs", orphan_pairs}, {"orphan_tests", orphan_tests}, {"tests_filtered", tests_filtered},
+                    {"tests_fallback", tests_fallback}}},
       {"hash", fmt::format("{:016x}", hash)},
       {"config", config_json},
       {"git_revision", rev},

@@ -21,7 +21,9 @@ nlohmann::json step_json(const StepResult& r) {
             {"ee_tests", c.ee_tests},
             {"orphan_tests", c.orphan_tests},
             {"restructured", c.restructured},
-            {"orphans_culled", c.orphans_culled}}},
+            {"orphans_culled", c.orphans_culled},
+            {"tests_filtered", c.tests_filtered},
+            {"tests_fallback", c.tests_fallback}}},
           {"traversal",
            {{"tasks", r.traversal.tasks},
             {"serial_ms", r.traversal.serial_ms},
@@ -45,16 +47,17 @@ nlohmann::json step_json(const StepResult& r) {
 }
 
 std::string csv_header() {
-  return "bv_tests,candidate_pairs,vf_pairs,ee_pairs,orphan_vf,orphan_ee,vf_tests,ee_tests,orphan_tests,contacts_vf,contacts_ee,"
+  return "bv_tests,candidate_pairs,vf_pairs,ee_pairs,orphan_vf,orphan_ee,vf_tests,ee_tests,orphan_tests,tests_filtered,"
+         "tests_fallback,contacts_vf,contacts_ee,"
          "build_ms,swept_bv_ms,refit_ms,cones_ms,traverse_ms,narrow_ms,orphan_ms,total_ms,hash";
 }
 
 std::string csv_row(const StepResult& r, std::uint64_t step_hash) {
   const StepCounters& c = r.counters;
   const StepTimings& t = r.timings;
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:016x}", c.bv_tests,
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:016x}", c.bv_tests,
                      c.candidate_pairs, c.vf_pairs, c.ee_pairs, c.orphan_vf, c.orphan_ee, c.vf_tests, c.ee_tests,
-                     c.orphan_tests, c.contacts_vf, c.contacts_ee, t.build_ms, t.swept_bv_ms, t.refit_ms, t.cones_ms, t.traverse_ms, t.narrow_ms,
+                     c.orphan_tests, c.tests_filtered, c.tests_fallback, c.contacts_vf, c.contacts_ee, t.build_ms, t.swept_bv_ms, t.refit_ms, t.cones_ms, t.traverse_ms, t.narrow_ms,
                      t.orphan_ms, t.total_ms, step_hash);
 }
 

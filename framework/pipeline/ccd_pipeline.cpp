@@ -265,6 +265,8 @@ void CcdPipeline::test_in_parallel(const Pairs& pairs, std::size_t chunk, const 
     c.contacts_vf += l.contacts_vf;
     c.contacts_ee += l.contacts_ee;
     c.orphans_culled += l.orphans_culled;
+    c.tests_filtered += l.tests_filtered;
+    c.tests_fallback += l.tests_fallback;
     if (record_tested_) {
       result.tested_vf.insert(result.tested_vf.end(), lt.record.tested_vf.begin(), lt.record.tested_vf.end());
       result.tested_ee.insert(result.tested_ee.end(), lt.record.tested_ee.begin(), lt.record.tested_ee.end());

@@ -22,6 +22,8 @@ struct StepCounters {
   std::uint64_t orphan_tests = 0;     ///< of the VF + EE tests, those from the orphan set
   std::uint64_t orphans_culled = 0;   ///< orphan pairs inside a patch skipped by normal-cone culling
   std::uint64_t restructured = 0;     ///< BVH sub-trees rebuilt by adaptive restructuring
+  std::uint64_t tests_filtered = 0;   ///< elementary tests decided by the tester's certified filter (TestRoute)
+  std::uint64_t tests_fallback = 0;   ///< elementary tests the tester could not decide itself (`conservative`)
   std::uint64_t contacts_vf = 0;
   std::uint64_t contacts_ee = 0;
 };

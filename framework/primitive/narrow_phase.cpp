@@ -1,6 +1,14 @@
 #include "framework/primitive/narrow_phase.hpp"
 
 namespace ccdlab {
+namespace {
+
+void count_route(const CcdHit& hit, StepCounters& c) {
+  c.tests_filtered += hit.route == TestRoute::filter;
+  c.tests_fallback += hit.route == TestRoute::fallback;
+}
+
+}  // namespace
 
 void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, int threads, PhaseTrace* trace) {
   x_t0_ = &x_t0;
@@ -63,6 +71,7 @@ void NarrowPhase::test_vf(Index v, Index f, std::vector<Contact>& out, StepCount
   if (box_cull && !face_box_[f].overlaps(vertex_box_[v])) return;
   ++c.vf_tests;
   CcdHit hit = tester_.vertex_face(vf_query(v, f));
+  count_route(hit, c);
   if (!hit.hit) return;
   ++c.contacts_vf;
   out.push_back(Contact{ContactKind::vf, v, f, {v, t[0], t[1], t[2]}, hit.toi, hit.coords});
@@ -75,6 +84,7 @@ void NarrowPhase::test_ee(Index a, Index b, std::vector<Contact>& out, StepCount
   if (box_cull && !edge_box_[a].overlaps(edge_box_[b])) return;  // both inflated: a 2η margin, still conservative
   ++c.ee_tests;
   CcdHit hit = tester_.edge_edge(ee_query(a, b));
+  count_route(hit, c);
   if (!hit.hit) return;
   ++c.contacts_ee;
   out.push_back(Contact{ContactKind::ee, a, b, {ea[0], ea[1], eb[0], eb[1]}, hit.toi, hit.coords});
