@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "framework/geometry/vec.hpp"
 
@@ -10,18 +11,49 @@ namespace {
 
 // Scaled Bernstein coefficients ĉ_k = C(n, k)·c_k of a degree-n polynomial on the window. Products are plain
 // convolutions in this basis (no division), and ĉ_k has the sign of c_k, which is all the tests need.
-template <int N>
+// Two scalar types run the same polynomial code:
+//  * Interval (framework/geometry/interval.hpp): outward-rounded bounds, used for de Casteljau subdivision
+//    and the separating-axis and box tests;
+//  * Bounded: a double and the sum of the absolute values of its terms, for the sign tests of `classify`.
+//    Every quantity there is a polynomial in the 24 inputs evaluated by one straight-line program of +, −, ×
+//    from differences of inputs (one rounding each); along any term at most 14 roundings occur (window ends
+//    x0 + t·(x1 − x0): 4; a cross product in Bernstein form: 3; a quartic's products and Bernstein sums: 3;
+//    the dot product's sums: 2; nn − u − w: 2), so |computed − exact| ≤ γ₁₄·Σ|terms| ≤ 15u·a (Higham,
+//    "Accuracy and Stability of Numerical Algorithms", §3.1). The test uses 2⁻⁴⁷ = 64u·a, and treats
+//    a < 1e-250 (possible underflow) or a non-finite a as unknown.
+//    It is ~4× cheaper than interval arithmetic (two operations per operation, no min/max).
+struct Bounded {
+  double v = 0, a = 0;  // value; a ≥ Σ|terms| of the exact value (as computed)
+  static constexpr double kError = 0x1p-47, kSmallest = 1e-250;
+  [[nodiscard]] bool reliable() const { return a >= kSmallest && a <= std::numeric_limits<double>::max(); }
+  [[nodiscard]] bool certainly_positive() const { return reliable() && v > kError * a; }
+  [[nodiscard]] bool certainly_negative() const { return reliable() && v < -kError * a; }
+};
+inline Bounded operator+(Bounded x, Bounded y) { return {x.v + y.v, x.a + y.a}; }
+inline Bounded operator-(Bounded x, Bounded y) { return {x.v - y.v, x.a + y.a}; }
+inline Bounded operator*(Bounded x, Bounded y) { return {x.v * y.v, x.a * y.a}; }
+/// An interval certainly holding the exact value of x.
+Interval to_interval(Bounded x) {
+  if (x.a == 0) return Interval(x.v);  // every term is zero: exact
+  if (!x.reliable()) return {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  const double e = Bounded::kError * x.a;
+  return {detail::widen_down(x.v - e), detail::widen_up(x.v + e)};
+}
+
+// Scaled Bernstein coefficients ĉ_k = C(n, k)·c_k of a degree-n polynomial on the window. Products are plain
+// convolutions in this basis (no division), and ĉ_k has the sign of c_k, which is all the tests need.
+template <class T, int N>
 struct Poly {
-  std::array<Interval, N + 1> c;
-  Interval& operator[](int k) { return c[k]; }
-  const Interval& operator[](int k) const { return c[k]; }
+  std::array<T, N + 1> c;
+  T& operator[](int k) { return c[k]; }
+  const T& operator[](int k) const { return c[k]; }
   [[nodiscard]] auto begin() const { return c.begin(); }
   [[nodiscard]] auto end() const { return c.end(); }
 };
 
-template <int M, int N>
-Poly<M + N> mul(const Poly<M>& a, const Poly<N>& b) {
-  Poly<M + N> c;
+template <class T, int M, int N>
+Poly<T, M + N> mul(const Poly<T, M>& a, const Poly<T, N>& b) {
+  Poly<T, M + N> c;
   for (int k = 0; k <= M + N; ++k) {
     const int i0 = std::max(0, k - N), i1 = std::min(k, M);
     c[k] = a[i0] * b[k - i0];
@@ -30,47 +62,65 @@ Poly<M + N> mul(const Poly<M>& a, const Poly<N>& b) {
   return c;
 }
 
-template <int N>
-Poly<N> operator+(const Poly<N>& a, const Poly<N>& b) {
-  Poly<N> c;
+template <class T, int N>
+Poly<T, N> operator+(const Poly<T, N>& a, const Poly<T, N>& b) {
+  Poly<T, N> c;
   for (int k = 0; k <= N; ++k) c[k] = a[k] + b[k];
   return c;
 }
-template <int N>
-Poly<N> operator-(const Poly<N>& a, const Poly<N>& b) {
-  Poly<N> c;
+template <class T, int N>
+Poly<T, N> operator-(const Poly<T, N>& a, const Poly<T, N>& b) {
+  Poly<T, N> c;
   for (int k = 0; k <= N; ++k) c[k] = a[k] - b[k];
   return c;
 }
 
-template <int N>
-bool all_positive(const Poly<N>& p) {
-  return std::all_of(p.begin(), p.end(), [](Interval x) { return x.certainly_positive(); });
+template <class T, int N>
+bool all_positive(const Poly<T, N>& p) {
+  return std::all_of(p.begin(), p.end(), [](const T& x) { return x.certainly_positive(); });
 }
-template <int N>
-bool all_negative(const Poly<N>& p) {
-  return std::all_of(p.begin(), p.end(), [](Interval x) { return x.certainly_negative(); });
+template <class T, int N>
+bool all_negative(const Poly<T, N>& p) {
+  return std::all_of(p.begin(), p.end(), [](const T& x) { return x.certainly_negative(); });
 }
 
-using LinVec = std::array<Poly<1>, 3>;
-using QuadVec = std::array<Poly<2>, 3>;
+template <class T>
+using LinVecT = std::array<Poly<T, 1>, 3>;
+template <class T>
+using QuadVecT = std::array<Poly<T, 2>, 3>;
+using LinVec = LinVecT<Interval>;
 
-QuadVec cross(const LinVec& a, const LinVec& b) {
+template <class T>
+QuadVecT<T> cross(const LinVecT<T>& a, const LinVecT<T>& b) {
   return {mul(a[1], b[2]) - mul(a[2], b[1]), mul(a[2], b[0]) - mul(a[0], b[2]), mul(a[0], b[1]) - mul(a[1], b[0])};
 }
-template <int M, int N>
-Poly<M + N> dot(const std::array<Poly<M>, 3>& a, const std::array<Poly<N>, 3>& b) {
+template <class T, int M, int N>
+Poly<T, M + N> dot(const std::array<Poly<T, M>, 3>& a, const std::array<Poly<T, N>, 3>& b) {
   return mul(a[0], b[0]) + mul(a[1], b[1]) + mul(a[2], b[2]);
 }
 
 /// The vector X0 + t·dX at the window's two ends: its (degree-1) Bernstein coefficients.
 LinVec on_window(const IVec3& x0, const IVec3& dx, double tl, double th) {
   LinVec out;
-  for (int i = 0; i < 3; ++i) out[i] = Poly<1>{{x0[i] + Interval(tl) * dx[i], x0[i] + Interval(th) * dx[i]}};
+  for (int i = 0; i < 3; ++i) out[i] = Poly<Interval, 1>{{x0[i] + Interval(tl) * dx[i], x0[i] + Interval(th) * dx[i]}};
+  return out;
+}
+/// The same from the rounded differences at t = 0 and t = 1, as Bounded values.
+LinVecT<Bounded> on_window(const Vec3& x0, const Vec3& x1, double tl, double th) {
+  LinVecT<Bounded> out;
+  for (int i = 0; i < 3; ++i) {
+    const Bounded a{x0[i], std::abs(x0[i])}, b{x1[i], std::abs(x1[i])}, d = b - a;
+    out[i] = Poly<Bounded, 1>{{a + Bounded{tl, tl} * d, a + Bounded{th, th} * d}};
+  }
+  return out;
+}
+LinVec to_intervals(const LinVecT<Bounded>& v) {
+  LinVec out;
+  for (int i = 0; i < 3; ++i) out[i] = Poly<Interval, 1>{{to_interval(v[i][0]), to_interval(v[i][1])}};
   return out;
 }
 
-Interval range(const Poly<1>& p) { return hull(p[0], p[1]); }
+Interval range(const Poly<Interval, 1>& p) { return hull(p[0], p[1]); }
 
 /// Axis-aligned separation of the two features over the window (a cheap test that also handles the
 /// degenerate configurations, parallel edges and zero-area faces, where the sign tests are uncertain).
@@ -80,7 +130,7 @@ bool boxes_separated(const RelativeMotion& m, const LinVec& A, const LinVec& B, 
     Interval first, second;  // the two features' coordinate ranges
     if (m.edge_edge) {
       first = hull(Interval(0.0), b);                           // edge a: {0, B}
-      second = hull(a, range(Poly<1>{{A[i][0] + C[i][0], A[i][1] + C[i][1]}}));  // edge b: {A, A + C}
+      second = hull(a, range(Poly<Interval, 1>{{A[i][0] + C[i][0], A[i][1] + C[i][1]}}));  // edge b: {A, A + C}
     } else {
       first = a;                                                // the vertex
       second = hull(Interval(0.0), hull(b, c));                 // the face: {0, B, C}
@@ -99,8 +149,9 @@ double norm_inf(const IVec3& v) {
 }
 
 RelativeMotion finish(bool ee, const IVec3& A0, const IVec3& A1, const IVec3& B0, const IVec3& B1, const IVec3& C0,
-                      const IVec3& C1, double extent) {
+                      const IVec3& C1, double extent, const std::array<Vec3, 6>& rounded) {
   RelativeMotion m;
+  m.a0 = rounded[0], m.a1 = rounded[1], m.b0 = rounded[2], m.b1 = rounded[3], m.c0 = rounded[4], m.c1 = rounded[5];
   m.edge_edge = ee;
   m.A0 = A0, m.B0 = B0, m.C0 = C0;
   m.dA = diff(A1, A0), m.dB = diff(B1, B0), m.dC = diff(C1, C0);
@@ -210,54 +261,59 @@ bool certainly_never_coplanar(const EdgeEdgeQuery& q) {
 RelativeMotion relative_motion(const VertexFaceQuery& q) {
   const double L = extent_of<8>({&q.v_t0, &q.f0_t0, &q.f1_t0, &q.f2_t0, &q.v_t1, &q.f0_t1, &q.f1_t1, &q.f2_t1});
   return finish(false, diff(q.v_t0, q.f0_t0), diff(q.v_t1, q.f0_t1), diff(q.f1_t0, q.f0_t0), diff(q.f1_t1, q.f0_t1),
-                diff(q.f2_t0, q.f0_t0), diff(q.f2_t1, q.f0_t1), L);
+                diff(q.f2_t0, q.f0_t0), diff(q.f2_t1, q.f0_t1), L,
+                {q.v_t0 - q.f0_t0, q.v_t1 - q.f0_t1, q.f1_t0 - q.f0_t0, q.f1_t1 - q.f0_t1, q.f2_t0 - q.f0_t0, q.f2_t1 - q.f0_t1});
 }
 
 RelativeMotion relative_motion(const EdgeEdgeQuery& q) {
   const double L = extent_of<8>({&q.ea0_t0, &q.ea1_t0, &q.eb0_t0, &q.eb1_t0, &q.ea0_t1, &q.ea1_t1, &q.eb0_t1, &q.eb1_t1});
   return finish(true, diff(q.eb0_t0, q.ea0_t0), diff(q.eb0_t1, q.ea0_t1), diff(q.ea1_t0, q.ea0_t0),
-                diff(q.ea1_t1, q.ea0_t1), diff(q.eb1_t0, q.eb0_t0), diff(q.eb1_t1, q.eb0_t1), L);
+                diff(q.ea1_t1, q.ea0_t1), diff(q.eb1_t0, q.eb0_t0), diff(q.eb1_t1, q.eb0_t1), L,
+                {q.eb0_t0 - q.ea0_t0, q.eb0_t1 - q.ea0_t1, q.ea1_t0 - q.ea0_t0, q.ea1_t1 - q.ea0_t1, q.eb1_t0 - q.eb0_t0,
+                 q.eb1_t1 - q.eb0_t1});
 }
 
 Verdict classify(const RelativeMotion& m, double tl, double th, bool coplanarity_only) {
-  const LinVec A = on_window(m.A0, m.dA, tl, th), B = on_window(m.B0, m.dB, tl, th), C = on_window(m.C0, m.dC, tl, th);
-  const QuadVec n = cross(B, C);
-  const Poly<3> f = dot(A, n);
+  using B = Bounded;
+  const LinVecT<B> A = on_window(m.a0, m.a1, tl, th), Bv = on_window(m.b0, m.b1, tl, th), C = on_window(m.c0, m.c1, tl, th);
+  const QuadVecT<B> n = cross(Bv, C);
+  const Poly<B, 3> f = dot(A, n);
   if (all_positive(f) || all_negative(f)) return Verdict::separated;
   if (coplanarity_only) return Verdict::unknown;
-  if (boxes_separated(m, A, B, C)) return Verdict::separated;
-  const Poly<4> u = dot(n, cross(B, A)), w = dot(n, cross(A, C)), nn = dot(n, n);
+  const LinVec Ai = to_intervals(A), Bi = to_intervals(Bv), Ci = to_intervals(C);
+  if (boxes_separated(m, Ai, Bi, Ci)) return Verdict::separated;
+  const Poly<B, 4> u = dot(n, cross(Bv, A)), w = dot(n, cross(A, C)), nn = dot(n, n);
   // A root of f certainly lies in the window when f's end values (its first and last Bernstein coefficients)
   // have certain, opposite signs.
   const bool root = (f[0].certainly_negative() && f[3].certainly_positive()) ||
                     (f[0].certainly_positive() && f[3].certainly_negative());
   if (!m.edge_edge) {
-    const Poly<4> r = nn - u - w;
+    const Poly<B, 4> r = nn - u - w;
     if (all_negative(u) || all_negative(w) || all_negative(r)) return Verdict::separated;
     if (root && all_positive(u) && all_positive(w) && all_positive(r)) return Verdict::contact;
     // Only a (nearly) flat face makes the sign tests blind; then try separating axes.
-    return !all_positive(nn) && separated_along_axes(m, A, B, C) ? Verdict::separated : Verdict::unknown;
+    return !all_positive(nn) && separated_along_axes(m, Ai, Bi, Ci) ? Verdict::separated : Verdict::unknown;
   }
-  const Poly<4> u_end = u + nn, w_end = w - nn;
+  const Poly<B, 4> u_end = u + nn, w_end = w - nn;
   // b0, b1 strictly on one side of edge a's line (u and u + nn of one sign; nn ≥ 0), or a0, a1 of edge b's.
   if (all_positive(u) || all_negative(u_end) || all_negative(w) || all_positive(w_end)) return Verdict::separated;
   if (root && all_negative(u) && all_positive(u_end) && all_positive(w) && all_negative(w_end)) return Verdict::contact;
   // Only (nearly) parallel or degenerate edges make the sign tests blind; then try separating axes.
-  return !all_positive(nn) && separated_along_axes(m, A, B, C) ? Verdict::separated : Verdict::unknown;
+  return !all_positive(nn) && separated_along_axes(m, Ai, Bi, Ci) ? Verdict::separated : Verdict::unknown;
 }
 
 bool for_each_coplanarity_window(const RelativeMotion& m, double tl, double th, double width,
                                  const std::function<bool(double, double)>& visit) {
   const LinVec A = on_window(m.A0, m.dA, tl, th), B = on_window(m.B0, m.dB, tl, th), C = on_window(m.C0, m.dC, tl, th);
-  const Poly<3> scaled = dot(A, cross(B, C));
+  const Poly<Interval, 3> scaled = dot(A, cross(B, C));
   // Three times the Bernstein coefficients (C(3,1) = C(3,2) = 3): one positive factor, same signs.
   struct Node {
-    Poly<3> b;
+    Poly<Interval, 3> b;
     double tl, th;
   };
   std::array<Node, 64> stack;
   int n = 0;
-  stack[n++] = {Poly<3>{{Interval(3.0) * scaled[0], scaled[1], scaled[2], Interval(3.0) * scaled[3]}}, tl, th};
+  stack[n++] = {Poly<Interval, 3>{{Interval(3.0) * scaled[0], scaled[1], scaled[2], Interval(3.0) * scaled[3]}}, tl, th};
   while (n > 0) {
     const Node node = stack[--n];
     if (all_positive(node.b) || all_negative(node.b)) continue;
@@ -266,12 +322,12 @@ bool for_each_coplanarity_window(const RelativeMotion& m, double tl, double th, 
       continue;
     }
     // de Casteljau at the midpoint: left and right halves' coefficients.
-    const Poly<3>& b = node.b;
+    const Poly<Interval, 3>& b = node.b;
     const Interval m01 = half(b[0] + b[1]), m12 = half(b[1] + b[2]), m23 = half(b[2] + b[3]);
     const Interval m012 = half(m01 + m12), m123 = half(m12 + m23), mid = half(m012 + m123);
     const double tm = 0.5 * (node.tl + node.th);
-    stack[n++] = {Poly<3>{{mid, m123, m23, b[3]}}, tm, node.th};
-    stack[n++] = {Poly<3>{{b[0], m01, m012, mid}}, node.tl, tm};
+    stack[n++] = {Poly<Interval, 3>{{mid, m123, m23, b[3]}}, tm, node.th};
+    stack[n++] = {Poly<Interval, 3>{{b[0], m01, m012, mid}}, node.tl, tm};
   }
   return false;
 }

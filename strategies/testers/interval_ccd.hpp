@@ -31,6 +31,7 @@ struct RelativeMotion {
   IVec3 dA, dB, dC;     ///< (value at t = 1) − (value at t = 0)
   double extent = 0;    ///< bounding-box diagonal of the 8 points (the scale tolerances are relative to)
   double motion = 0;    ///< largest relative displacement |dA|, |dB|, |dC| (∞-norm)
+  Vec3 a0, a1, b0, b1, c0, c1;  ///< A, B, C at t = 0 and t = 1 as rounded doubles (one rounding each)
 };
 
 /// Fast certified test, in plain double with a forward error bound: true when f(t) = A·(B×C) provably keeps
