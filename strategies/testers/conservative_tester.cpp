@@ -15,6 +15,8 @@ using interval_ccd::Verdict;
 constexpr double kMinWidth = 0x1p-50;
 /// Width to which roots of f are isolated (f only) before the inside / crossing conditions are examined.
 constexpr double kIsolationWidth = 0x1p-6;
+/// More isolated windows than this means f is near zero over much of the step (coplanar motion).
+constexpr int kMaxIsolatedWindows = 6;
 
 struct Window {
   double tl, th;
@@ -58,7 +60,8 @@ double ConservativeTester::earliest_root(const interval_ccd::RelativeMotion& m, 
 
 template <class Query>
 CcdHit ConservativeTester::search(const Query& q) const {
-  if (interval_ccd::certainly_never_coplanar(q)) return {};
+  const interval_ccd::Coplanarity screen = interval_ccd::screen_coplanarity(q);
+  if (screen == interval_ccd::Coplanarity::never) return {};
   const interval_ccd::RelativeMotion m = interval_ccd::relative_motion(q);
   // Width at which a window counts as resolved: the features move at most δ·L within it.
   const double min_width = m.motion > 0 ? std::max(params_.delta * m.extent / m.motion, kMinWidth) : 1.0;
@@ -76,25 +79,11 @@ CcdHit ConservativeTester::search(const Query& q) const {
     h.route = TestRoute::fallback;
     return h.hit ? with_coords(h, q) : h;
   };
-  // The whole step first: it settles most queries, including coplanar motion kept apart (separating axes).
-  switch (interval_ccd::classify(m, 0.0, 1.0)) {
-    case Verdict::separated:
-      return {};
-    case Verdict::contact: {
-      CcdHit h;
-      h.hit = true;
-      h.toi = earliest_root(m, 0.0, 1.0);
-      return with_coords(h, q);
-    }
-    case Verdict::unknown:
-      break;
-  }
-  // Then coplanarity windows (cheap, f only), earliest first; the full classification only inside them.
-  const double isolation_width = std::max(kIsolationWidth, min_width);
   int visited = 0;
   CcdHit result;
   bool decided = false;
-  interval_ccd::for_each_coplanarity_window(m, 0.0, 1.0, isolation_width, [&](double a, double b) {
+  // Bisects [a, b] earliest first with the full classification; true once the query is decided.
+  auto bisect = [&](double a, double b) {
     WindowStack stack;
     stack.push({a, b});
     while (!stack.empty()) {
@@ -115,8 +104,30 @@ CcdHit ConservativeTester::search(const Query& q) const {
           stack.push({w.tl, mid});
       }
     }
-    return false;  // no contact in this window: on to the next
+    return false;  // no contact in [a, b]
+  };
+  // Coplanar motion (f near zero all step): bisect the whole step from the top, where separating axes settle
+  // features kept apart in one go.
+  if (screen == interval_ccd::Coplanarity::flat) {
+    bisect(0.0, 1.0);
+    return decided ? result : CcdHit{};
+  }
+  // Otherwise coplanarity windows first (cheap, f only), earliest first; the full classification only inside
+  // them. Many such windows also mean f stays small over much of the step: then bisect from the top too.
+  const double isolation_width = std::max(kIsolationWidth, min_width);
+  std::array<Window, kMaxIsolatedWindows> windows;
+  int count = 0;
+  const bool crowded = interval_ccd::for_each_coplanarity_window(m, 0.0, 1.0, isolation_width, [&](double a, double b) {
+    if (count == kMaxIsolatedWindows) return true;  // stop: too many
+    windows[count++] = {a, b};
+    return false;
   });
+  if (crowded) {
+    bisect(0.0, 1.0);
+  } else {
+    for (int i = 0; i < count && !bisect(windows[i].tl, windows[i].th); ++i) {
+    }
+  }
   return decided ? result : CcdHit{};
 }
 

@@ -228,35 +228,42 @@ Vec3 cross_abs(const Vec3& a, const Vec3& b) {
 /// term at most 10 roundings occur (3 input differences, 2 products, 5 sums), so the computed value is within
 /// γ₁₀·Σ|terms| ≤ 11u·(the same sum evaluated on absolute values) of the exact one (Higham, "Accuracy and
 /// Stability of Numerical Algorithms", §3.1). We use 2⁻⁴⁸ = 32u, a margin of 3×.
-bool one_signed_on_step(const Vec3& A0, const Vec3& B0, const Vec3& C0, const Vec3& A1, const Vec3& B1, const Vec3& C1) {
+Coplanarity screen_step(const Vec3& A0, const Vec3& B0, const Vec3& C0, const Vec3& A1, const Vec3& B1, const Vec3& C1) {
   const Vec3 n0 = B0.cross(C0), n1 = B0.cross(C1) + B1.cross(C0), n2 = B1.cross(C1);
   const Vec3 m0 = cross_abs(B0, C0), m1 = cross_abs(B0, C1) + cross_abs(B1, C0), m2 = cross_abs(B1, C1);
   const Vec3 a0 = A0.cwiseAbs(), a1 = A1.cwiseAbs();
   const double f[4] = {A0.dot(n0), A0.dot(n1) + A1.dot(n0), A0.dot(n2) + A1.dot(n1), A1.dot(n2)};
   const double g[4] = {a0.dot(m0), a0.dot(m1) + a1.dot(m0), a0.dot(m2) + a1.dot(m1), a1.dot(m2)};
-  constexpr double kRelative = 0x1p-48;
+  constexpr double kRelative = 0x1p-48, kFlat = 0x1p-20;
   constexpr double kSmallest = 1e-250;  // below this, products may have underflowed: not certain
-  bool pos = true, neg = true;
+  bool pos = true, neg = true, flat = true;
   for (int k = 0; k < 4; ++k) {
-    if (!(g[k] >= kSmallest) || !std::isfinite(g[k])) return false;
+    flat = flat && std::abs(f[k]) <= kFlat * g[k];
+    if (!(g[k] >= kSmallest) || !std::isfinite(g[k])) {
+      pos = neg = false;
+      continue;
+    }
     const double err = kRelative * g[k];
     pos = pos && f[k] > err;
     neg = neg && f[k] < -err;
   }
-  return pos || neg;
+  return pos || neg ? Coplanarity::never : flat ? Coplanarity::flat : Coplanarity::general;
 }
 
 }  // namespace
 
-bool certainly_never_coplanar(const VertexFaceQuery& q) {
-  return one_signed_on_step(q.v_t0 - q.f0_t0, q.f1_t0 - q.f0_t0, q.f2_t0 - q.f0_t0, q.v_t1 - q.f0_t1,
-                            q.f1_t1 - q.f0_t1, q.f2_t1 - q.f0_t1);
+Coplanarity screen_coplanarity(const VertexFaceQuery& q) {
+  return screen_step(q.v_t0 - q.f0_t0, q.f1_t0 - q.f0_t0, q.f2_t0 - q.f0_t0, q.v_t1 - q.f0_t1, q.f1_t1 - q.f0_t1,
+                     q.f2_t1 - q.f0_t1);
 }
 
-bool certainly_never_coplanar(const EdgeEdgeQuery& q) {
-  return one_signed_on_step(q.eb0_t0 - q.ea0_t0, q.ea1_t0 - q.ea0_t0, q.eb1_t0 - q.eb0_t0, q.eb0_t1 - q.ea0_t1,
-                            q.ea1_t1 - q.ea0_t1, q.eb1_t1 - q.eb0_t1);
+Coplanarity screen_coplanarity(const EdgeEdgeQuery& q) {
+  return screen_step(q.eb0_t0 - q.ea0_t0, q.ea1_t0 - q.ea0_t0, q.eb1_t0 - q.eb0_t0, q.eb0_t1 - q.ea0_t1,
+                     q.ea1_t1 - q.ea0_t1, q.eb1_t1 - q.eb0_t1);
 }
+
+bool certainly_never_coplanar(const VertexFaceQuery& q) { return screen_coplanarity(q) == Coplanarity::never; }
+bool certainly_never_coplanar(const EdgeEdgeQuery& q) { return screen_coplanarity(q) == Coplanarity::never; }
 
 RelativeMotion relative_motion(const VertexFaceQuery& q) {
   const double L = extent_of<8>({&q.v_t0, &q.f0_t0, &q.f1_t0, &q.f2_t0, &q.v_t1, &q.f0_t1, &q.f1_t1, &q.f2_t1});
@@ -304,8 +311,10 @@ Verdict classify(const RelativeMotion& m, double tl, double th, bool coplanarity
 
 bool for_each_coplanarity_window(const RelativeMotion& m, double tl, double th, double width,
                                  const std::function<bool(double, double)>& visit) {
-  const LinVec A = on_window(m.A0, m.dA, tl, th), B = on_window(m.B0, m.dB, tl, th), C = on_window(m.C0, m.dC, tl, th);
-  const Poly<Interval, 3> scaled = dot(A, cross(B, C));
+  // f's coefficients on [tl, th] in double with their error bound, as intervals; then subdivision in intervals.
+  const LinVecT<Bounded> A = on_window(m.a0, m.a1, tl, th), B = on_window(m.b0, m.b1, tl, th), C = on_window(m.c0, m.c1, tl, th);
+  const Poly<Bounded, 3> f = dot(A, cross(B, C));
+  const Poly<Interval, 3> scaled{{to_interval(f[0]), to_interval(f[1]), to_interval(f[2]), to_interval(f[3])}};
   // Three times the Bernstein coefficients (C(3,1) = C(3,2) = 3): one positive factor, same signs.
   struct Node {
     Poly<Interval, 3> b;

@@ -40,6 +40,13 @@ struct RelativeMotion {
 bool certainly_never_coplanar(const VertexFaceQuery& q);
 bool certainly_never_coplanar(const EdgeEdgeQuery& q);
 
+/// The same test, also telling apart queries whose f stays near zero over the whole step (coplanar motion,
+/// e.g. neighbouring features of a flat sheet: |f| below 2⁻²⁰ of its terms' size), which `conservative`
+/// settles best from the whole step (separating axes) rather than root by root.
+enum class Coplanarity { never, flat, general };
+Coplanarity screen_coplanarity(const VertexFaceQuery& q);
+Coplanarity screen_coplanarity(const EdgeEdgeQuery& q);
+
 RelativeMotion relative_motion(const VertexFaceQuery& q);
 RelativeMotion relative_motion(const EdgeEdgeQuery& q);
 
