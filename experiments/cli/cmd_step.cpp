@@ -1,10 +1,11 @@
-// `ccdlab step T0 T1 [--k K] [--scheduler S] [--threads N] [--tester T] [--contacts FILE.csv] [--json]`:
+// `ccdlab step T0 T1 [--k K] [--scheduler S] [--threads N] [--tester NAME[:key=value,…]] [--contacts FILE.csv] [--json]`:
 // one CCD step between two mesh files of the same topology (one self-colliding body).
 #include <fstream>
 
 #include <omp.h>
 
 #include "experiments/cli/commands.hpp"
+#include "experiments/cli/tester_spec.hpp"
 #include "experiments/cli/report.hpp"
 #include "framework/mesh/mesh_io.hpp"
 #include "framework/util/error.hpp"
@@ -30,7 +31,7 @@ int step_command(const StepOptions& o) {
   s.threads = o.threads;
   s.builder = builder_registry().make(choose(builder_registry(), "hierarchy", o.hierarchy));
   s.scheduler = scheduler_registry().make(choose(scheduler_registry(), "scheduler", o.scheduler));
-  s.tester = tester_registry().make(choose(tester_registry(), "tester", o.tester));
+  s.tester = tester_registry().make(parse_tester(o.tester, tester_registry()));
   omp_set_num_threads(o.threads);
 
   MeshData m0 = read_mesh(o.mesh_t0);
