@@ -19,6 +19,17 @@ REQUIRED_COLUMNS = ["step", "bv_tests", "candidate_pairs", "vf_tests", "ee_tests
                     "total_ms", *[p for p in PHASES if p not in OPTIONAL_PHASES]]
 
 
+def read_table(path: Path, columns: list[str], hint: str) -> pd.DataFrame:
+    """A CSV result file that must exist (else FileNotFoundError naming `hint`) and hold `columns` (else ValueError)."""
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: not found ({hint})")
+    df = pd.read_csv(path)
+    missing = [c for c in columns if c not in df.columns]
+    if missing:
+        raise ValueError(f"{path}: missing columns {', '.join(missing)}")
+    return df
+
+
 class ResultError(Exception):
     """A result folder that is missing, incomplete or malformed; the message names the file."""
 

@@ -21,6 +21,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from ccdlab_results import read_table  # noqa: E402
+
 QUERY_COLUMNS = ["set", "tester", "query", "truth", "hit", "route", "us", "toi", "exact_toi"]
 PIPELINE_COLUMNS = ["round", "tester", "ms_per_step", "contacts_vf", "contacts_ee", "hash"]
 ROUTE_FALLBACK = 2
@@ -34,16 +37,6 @@ def group_of(set_name: str) -> str:
         return "hard cases (built-in)"
     parts = set_name.split("/")
     return parts[1] if parts[0] == "simulation" and len(parts) > 1 else set_name
-
-
-def read_csv(path: Path, columns: list[str], hint: str) -> pd.DataFrame:
-    if not path.is_file():
-        raise FileNotFoundError(f"{path}: not found ({hint})")
-    df = pd.read_csv(path)
-    missing = [c for c in columns if c not in df.columns]
-    if missing:
-        raise ValueError(f"{path}: missing columns {', '.join(missing)}")
-    return df
 
 
 def summarize(queries: pd.DataFrame) -> pd.DataFrame:
@@ -127,10 +120,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("results", type=Path)
     args = parser.parse_args(argv)
     try:
-        queries = read_csv(args.results / "queries.csv", QUERY_COLUMNS, "run `ccdlab validate … --out DIR` first")
+        queries = read_table(args.results / "queries.csv", QUERY_COLUMNS, "run `ccdlab validate … --out DIR` first")
         pipeline = None
         if (args.results / "pipeline.csv").is_file():
-            pipeline = read_csv(args.results / "pipeline.csv", PIPELINE_COLUMNS, "written by accuracy.sh")
+            pipeline = read_table(args.results / "pipeline.csv", PIPELINE_COLUMNS, "written by accuracy.sh")
     except (FileNotFoundError, ValueError) as e:
         print(f"plot_accuracy.py: error: {e}", file=sys.stderr)
         return 2

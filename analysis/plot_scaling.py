@@ -19,22 +19,16 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import pandas as pd  # noqa: E402
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from ccdlab_results import read_table  # noqa: E402
+
 SCALING_COLUMNS = ["scheduler", "cores", "predicted_ms_per_step", "predicted_speedup", "measured_ms_per_step"]
 BENCH_COLUMNS = ["scheduler", "threads", "ms_per_step", "speedup", "bv_tests_per_step", "lambda"]
 
 
 def load(folder: Path):
-    frames = []
-    for name, columns in (("scaling.csv", SCALING_COLUMNS), ("bench.csv", BENCH_COLUMNS)):
-        path = folder / name
-        if not path.is_file():
-            raise FileNotFoundError(f"{path}: not found (run `ccdlab bench CONFIG.yaml` first)")
-        df = pd.read_csv(path)
-        missing = [c for c in columns if c not in df.columns]
-        if missing:
-            raise ValueError(f"{path}: missing columns {', '.join(missing)}")
-        frames.append(df)
-    return frames
+    hint = "run `ccdlab bench CONFIG.yaml` first"
+    return [read_table(folder / "scaling.csv", SCALING_COLUMNS, hint), read_table(folder / "bench.csv", BENCH_COLUMNS, hint)]
 
 
 def plot(scaling: pd.DataFrame, bench: pd.DataFrame, out: Path) -> Path:

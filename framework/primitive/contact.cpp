@@ -1,5 +1,7 @@
 #include "framework/primitive/contact.hpp"
 
+#include "framework/geometry/distance.hpp"
+
 #include <algorithm>
 
 namespace ccdlab {
@@ -22,6 +24,18 @@ std::uint64_t contact_set_hash(std::span<const Contact> sorted_contacts, std::ui
     mix(std::uint64_t(std::uint32_t(c.feature_b)));
   }
   return h;
+}
+
+std::array<double, 2> contact_coords(const VertexFaceQuery& q, double t) {
+  auto at = [t](const Vec3& a, const Vec3& b) -> Vec3 { return a + t * (b - a); };
+  const auto c = closest_point_triangle(at(q.v_t0, q.v_t1), at(q.f0_t0, q.f0_t1), at(q.f1_t0, q.f1_t1), at(q.f2_t0, q.f2_t1));
+  return {c.bary[1], c.bary[2]};
+}
+
+std::array<double, 2> contact_coords(const EdgeEdgeQuery& q, double t) {
+  auto at = [t](const Vec3& a, const Vec3& b) -> Vec3 { return a + t * (b - a); };
+  const auto c = closest_segment_segment(at(q.ea0_t0, q.ea0_t1), at(q.ea1_t0, q.ea1_t1), at(q.eb0_t0, q.eb0_t1), at(q.eb1_t0, q.eb1_t1));
+  return {c.s, c.t};
 }
 
 std::string_view to_string(ContactKind kind) { return kind == ContactKind::vf ? "vf" : "ee"; }

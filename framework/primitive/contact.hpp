@@ -40,6 +40,11 @@ struct CcdHit {
   TestRoute route = TestRoute::main;
 };
 
+/// The features at time t of a contact: VF barycentric weights of f1, f2 of the closest face point; EE the
+/// parameters of the closest points on edges a and b (what CcdHit::coords holds).
+std::array<double, 2> contact_coords(const VertexFaceQuery& q, double t);
+std::array<double, 2> contact_coords(const EdgeEdgeQuery& q, double t);
+
 enum class ContactKind : std::uint8_t { vf = 0, ee = 1 };
 
 /// One colliding feature pair.

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 
-#include "framework/geometry/distance.hpp"
 #include "framework/util/error.hpp"
 
 namespace ccdlab {
@@ -32,16 +31,9 @@ struct WindowStack {
   [[nodiscard]] bool empty() const { return n == 0; }
 };
 
-CcdHit with_coords(CcdHit h, const VertexFaceQuery& q) {
-  auto at = [&](const Vec3& a, const Vec3& b) -> Vec3 { return a + h.toi * (b - a); };
-  const auto c = closest_point_triangle(at(q.v_t0, q.v_t1), at(q.f0_t0, q.f0_t1), at(q.f1_t0, q.f1_t1), at(q.f2_t0, q.f2_t1));
-  h.coords = {c.bary[1], c.bary[2]};
-  return h;
-}
-CcdHit with_coords(CcdHit h, const EdgeEdgeQuery& q) {
-  auto at = [&](const Vec3& a, const Vec3& b) -> Vec3 { return a + h.toi * (b - a); };
-  const auto c = closest_segment_segment(at(q.ea0_t0, q.ea0_t1), at(q.ea1_t0, q.ea1_t1), at(q.eb0_t0, q.eb0_t1), at(q.eb1_t0, q.eb1_t1));
-  h.coords = {c.s, c.t};
+template <class Query>
+CcdHit with_coords(CcdHit h, const Query& q) {
+  h.coords = contact_coords(q, h.toi);
   return h;
 }
 

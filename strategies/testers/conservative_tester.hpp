@@ -1,7 +1,8 @@
 #pragma once
 // `conservative`: never misses a collision (zero thickness, linear motion). Every rounding error is
-// accounted for by interval arithmetic (framework/geometry/interval.hpp); the step [0, 1] is bisected in time
-// and each window is classified by the certified Bernstein bounds of interval_ccd.hpp:
+// accounted for (forward error bounds and interval arithmetic, interval_ccd.hpp). The roots of the coplanarity
+// cubic are isolated first (or, for coplanar motion, the whole step is taken at once); those windows are
+// bisected in time and each is classified by certified Bernstein bounds:
 //   separated → dropped;  contact (proven root of f, features strictly inside) → hit;  unknown → bisected.
 // Windows are visited earliest first, so the first hit's window start is a lower bound on the time of
 // contact; the time is then narrowed to `toi_tolerance` with the (cheaper) coplanarity test alone.

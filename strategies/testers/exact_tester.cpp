@@ -11,7 +11,6 @@
 #include <mutex>
 #include <vector>
 
-#include "framework/geometry/distance.hpp"
 #include "strategies/testers/interval_ccd.hpp"
 
 namespace ccdlab {
@@ -180,30 +179,22 @@ ExactTester::Decision ExactTester::decide(const EdgeEdgeQuery& q) const {
   return decide_points({q.ea0_t0, q.ea1_t0, q.eb0_t0, q.eb1_t0}, {q.ea0_t1, q.ea1_t1, q.eb0_t1, q.eb1_t1}, true);
 }
 
-CcdHit ExactTester::vertex_face(const VertexFaceQuery& q) const {
-  const Decision d = decide(q);
+namespace {
+
+template <class Query>
+CcdHit as_hit(const ExactTester::Decision& d, const Query& q) {
   CcdHit h;
   h.route = d.prefiltered ? TestRoute::filter : TestRoute::main;
   if (!d.hit) return h;
   h.hit = true;
   h.toi = d.toi_lo;
-  auto at = [&](const Vec3& a, const Vec3& b) -> Vec3 { return a + d.toi_lo * (b - a); };
-  const auto c = closest_point_triangle(at(q.v_t0, q.v_t1), at(q.f0_t0, q.f0_t1), at(q.f1_t0, q.f1_t1), at(q.f2_t0, q.f2_t1));
-  h.coords = {c.bary[1], c.bary[2]};
+  h.coords = contact_coords(q, d.toi_lo);
   return h;
 }
 
-CcdHit ExactTester::edge_edge(const EdgeEdgeQuery& q) const {
-  const Decision d = decide(q);
-  CcdHit h;
-  h.route = d.prefiltered ? TestRoute::filter : TestRoute::main;
-  if (!d.hit) return h;
-  h.hit = true;
-  h.toi = d.toi_lo;
-  auto at = [&](const Vec3& a, const Vec3& b) -> Vec3 { return a + d.toi_lo * (b - a); };
-  const auto c = closest_segment_segment(at(q.ea0_t0, q.ea0_t1), at(q.ea1_t0, q.ea1_t1), at(q.eb0_t0, q.eb0_t1), at(q.eb1_t0, q.eb1_t1));
-  h.coords = {c.s, c.t};
-  return h;
-}
+}  // namespace
+
+CcdHit ExactTester::vertex_face(const VertexFaceQuery& q) const { return as_hit(decide(q), q); }
+CcdHit ExactTester::edge_edge(const EdgeEdgeQuery& q) const { return as_hit(decide(q), q); }
 
 }  // namespace ccdlab

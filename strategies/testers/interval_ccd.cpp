@@ -99,13 +99,8 @@ Poly<T, M + N> dot(const std::array<Poly<T, M>, 3>& a, const std::array<Poly<T, 
   return mul(a[0], b[0]) + mul(a[1], b[1]) + mul(a[2], b[2]);
 }
 
-/// The vector X0 + t·dX at the window's two ends: its (degree-1) Bernstein coefficients.
-LinVec on_window(const IVec3& x0, const IVec3& dx, double tl, double th) {
-  LinVec out;
-  for (int i = 0; i < 3; ++i) out[i] = Poly<Interval, 1>{{x0[i] + Interval(tl) * dx[i], x0[i] + Interval(th) * dx[i]}};
-  return out;
-}
-/// The same from the rounded differences at t = 0 and t = 1, as Bounded values.
+/// The vector X(t) = X0 + t·(X1 − X0) at the window's two ends (its degree-1 Bernstein coefficients), as
+/// Bounded values.
 LinVecT<Bounded> on_window(const Vec3& x0, const Vec3& x1, double tl, double th) {
   LinVecT<Bounded> out;
   for (int i = 0; i < 3; ++i) {
@@ -140,23 +135,11 @@ bool boxes_separated(const RelativeMotion& m, const LinVec& A, const LinVec& B, 
   return false;
 }
 
-IVec3 diff(const Vec3& a, const Vec3& b) { return {Interval(a.x()) - b.x(), Interval(a.y()) - b.y(), Interval(a.z()) - b.z()}; }
-IVec3 diff(const IVec3& a, const IVec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double norm_inf(const IVec3& v) {
-  double m = 0;
-  for (const Interval& x : v) m = std::max({m, std::abs(x.lo), std::abs(x.hi)});
-  return m;
-}
-
-RelativeMotion finish(bool ee, const IVec3& A0, const IVec3& A1, const IVec3& B0, const IVec3& B1, const IVec3& C0,
-                      const IVec3& C1, double extent, const std::array<Vec3, 6>& rounded) {
-  RelativeMotion m;
-  m.a0 = rounded[0], m.a1 = rounded[1], m.b0 = rounded[2], m.b1 = rounded[3], m.c0 = rounded[4], m.c1 = rounded[5];
-  m.edge_edge = ee;
-  m.A0 = A0, m.B0 = B0, m.C0 = C0;
-  m.dA = diff(A1, A0), m.dB = diff(B1, B0), m.dC = diff(C1, C0);
-  m.extent = extent;
-  m.motion = std::max({norm_inf(m.dA), norm_inf(m.dB), norm_inf(m.dC)});
+RelativeMotion make_motion(bool ee, const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, const Vec3& c0,
+                           const Vec3& c1, double extent) {
+  RelativeMotion m{ee, a0, a1, b0, b1, c0, c1, extent, 0.0};
+  m.motion = std::max({(a1 - a0).lpNorm<Eigen::Infinity>(), (b1 - b0).lpNorm<Eigen::Infinity>(),
+                       (c1 - c0).lpNorm<Eigen::Infinity>()});
   return m;
 }
 
@@ -267,17 +250,14 @@ bool certainly_never_coplanar(const EdgeEdgeQuery& q) { return screen_coplanarit
 
 RelativeMotion relative_motion(const VertexFaceQuery& q) {
   const double L = extent_of<8>({&q.v_t0, &q.f0_t0, &q.f1_t0, &q.f2_t0, &q.v_t1, &q.f0_t1, &q.f1_t1, &q.f2_t1});
-  return finish(false, diff(q.v_t0, q.f0_t0), diff(q.v_t1, q.f0_t1), diff(q.f1_t0, q.f0_t0), diff(q.f1_t1, q.f0_t1),
-                diff(q.f2_t0, q.f0_t0), diff(q.f2_t1, q.f0_t1), L,
-                {q.v_t0 - q.f0_t0, q.v_t1 - q.f0_t1, q.f1_t0 - q.f0_t0, q.f1_t1 - q.f0_t1, q.f2_t0 - q.f0_t0, q.f2_t1 - q.f0_t1});
+  return make_motion(false, q.v_t0 - q.f0_t0, q.v_t1 - q.f0_t1, q.f1_t0 - q.f0_t0, q.f1_t1 - q.f0_t1, q.f2_t0 - q.f0_t0,
+                     q.f2_t1 - q.f0_t1, L);
 }
 
 RelativeMotion relative_motion(const EdgeEdgeQuery& q) {
   const double L = extent_of<8>({&q.ea0_t0, &q.ea1_t0, &q.eb0_t0, &q.eb1_t0, &q.ea0_t1, &q.ea1_t1, &q.eb0_t1, &q.eb1_t1});
-  return finish(true, diff(q.eb0_t0, q.ea0_t0), diff(q.eb0_t1, q.ea0_t1), diff(q.ea1_t0, q.ea0_t0),
-                diff(q.ea1_t1, q.ea0_t1), diff(q.eb1_t0, q.eb0_t0), diff(q.eb1_t1, q.eb0_t1), L,
-                {q.eb0_t0 - q.ea0_t0, q.eb0_t1 - q.ea0_t1, q.ea1_t0 - q.ea0_t0, q.ea1_t1 - q.ea0_t1, q.eb1_t0 - q.eb0_t0,
-                 q.eb1_t1 - q.eb0_t1});
+  return make_motion(true, q.eb0_t0 - q.ea0_t0, q.eb0_t1 - q.ea0_t1, q.ea1_t0 - q.ea0_t0, q.ea1_t1 - q.ea0_t1,
+                     q.eb1_t0 - q.eb0_t0, q.eb1_t1 - q.eb0_t1, L);
 }
 
 Verdict classify(const RelativeMotion& m, double tl, double th, bool coplanarity_only) {

@@ -21,17 +21,13 @@
 
 namespace ccdlab::interval_ccd {
 
-using IVec3 = std::array<Interval, 3>;
-
-/// A query as the three relative vectors at t = 0 and their change over the step (exact inputs, rounded
-/// outward once).
+/// A query as the three relative vectors A, B, C at t = 0 and t = 1, each a difference of two inputs
+/// (one rounding; the error bounds of interval_ccd.cpp account for it).
 struct RelativeMotion {
   bool edge_edge = false;
-  IVec3 A0, B0, C0;     ///< at t = 0
-  IVec3 dA, dB, dC;     ///< (value at t = 1) − (value at t = 0)
-  double extent = 0;    ///< bounding-box diagonal of the 8 points (the scale tolerances are relative to)
-  double motion = 0;    ///< largest relative displacement |dA|, |dB|, |dC| (∞-norm)
-  Vec3 a0, a1, b0, b1, c0, c1;  ///< A, B, C at t = 0 and t = 1 as rounded doubles (one rounding each)
+  Vec3 a0, a1, b0, b1, c0, c1;
+  double extent = 0;  ///< bounding-box diagonal of the 8 points (the scale tolerances are relative to)
+  double motion = 0;  ///< largest relative displacement |A1 − A0|, |B1 − B0|, |C1 − C0| (∞-norm; a heuristic)
 };
 
 /// Fast certified test, in plain double with a forward error bound: true when f(t) = A·(B×C) provably keeps

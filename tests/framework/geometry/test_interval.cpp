@@ -30,7 +30,6 @@ TEST(Interval, EveryOperationEnclosesTheExactResult) {
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> mant(-1, 1);
   std::uniform_int_distribution<int> expo(-1070, 60);
-  int checked = 0;
   for (int k = 0; k < 20000; ++k) {
     // Mix ordinary, tiny (subnormal-range) and nearly cancelling operands.
     const double a = std::ldexp(mant(rng), k % 3 == 0 ? expo(rng) : int(mant(rng) * 20));
@@ -49,19 +48,16 @@ TEST(Interval, EveryOperationEnclosesTheExactResult) {
     Q wl(W.lo), vh(V.hi);
     mpq_mul(r.v, wl.v, vh.v);
     ASSERT_TRUE(encloses(W * V, r));
-    checked += 4;
   }
-  EXPECT_EQ(checked, 80000);
 }
 
 TEST(Interval, ExactZerosStayZeroAndUnderflowIsCovered) {
   const Interval z = Interval(0.0) * Interval(3.5);
   EXPECT_EQ(z.lo, 0.0);
   EXPECT_EQ(z.hi, 0.0);
-  const Interval tiny = Interval(1e-200) * Interval(1e-200);  // rounds to 0, exact value is positive
-  EXPECT_LT(tiny.lo, 0.0 + 1e-300);
+  const Interval tiny = Interval(1e-200) * Interval(1e-200);  // rounds to 0, exact value is 1e-400 > 0
+  EXPECT_LE(tiny.lo, 0.0);
   EXPECT_GT(tiny.hi, 0.0);
-  EXPECT_FALSE(tiny.certainly_positive() && tiny.lo > 1e-300);
 }
 
 TEST(Interval, CertaintyIsFalseOnNaN) {
