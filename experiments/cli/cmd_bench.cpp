@@ -16,6 +16,7 @@
 #include "experiments/cli/report.hpp"
 #include "framework/pipeline/schedule_sim.hpp"
 #include "framework/util/error.hpp"
+#include "framework/util/files.hpp"
 #include "framework/util/progress.hpp"
 #include "strategies/registry.hpp"
 
@@ -33,6 +34,7 @@ struct Measured {
   std::uint64_t bv_tests = 0, candidates = 0, elementary_tests = 0;
   std::uint64_t front_max = 0, front_bytes_max = 0, sprouted = 0, pruned = 0, rebuilds = 0;
   double serial_ms = 0, traverse_ms = 0, imbalance_sum = 0;
+  double spread = 0;  ///< (max − min) ÷ median of the rounds' ms per step
   int imbalance_n = 0;
   std::vector<std::vector<std::vector<PhaseTrace>>> traces;  ///< per round, per step
   /// Traces of the round whose time is the median: the simulator replays a typical run, not an outlier.
@@ -44,7 +46,7 @@ struct Measured {
   }
 };
 
-std::vector<int> parse_ints(const std::string& list, const char* option) {
+std::vector<int> parse_ints(const std::string& list, const char* option, int max) {
   std::vector<int> out;
   std::size_t start = 0;
   while (start <= list.size()) {
@@ -53,10 +55,10 @@ std::vector<int> parse_ints(const std::string& list, const char* option) {
     try {
       std::size_t used = 0;
       int v = std::stoi(item, &used);
-      if (used != item.size() || v < 1) throw std::invalid_argument(item);
+      if (used != item.size() || v < 1 || v > max) throw std::invalid_argument(item);
       out.push_back(v);
     } catch (const std::exception&) {
-      fail("--{}: expected a comma-separated list of integers >= 1, got '{}'", option, list);
+      fail("--{}: expected a comma-separated list of integers from 1 to {}, got '{}'", option, max, list);
     }
     if (comma == std::string::npos) break;
     start = comma + 1;
@@ -85,8 +87,8 @@ int bench_command(const BenchOptions& o) {
   for (const auto& s : schedulers)
     if (!reg.schedulers.find(s))
       fail("--schedulers: expected names from {}, got '{}'", fmt::join(reg.schedulers.names(), ", "), s);
-  const std::vector<int> threads = parse_ints(o.threads, "threads");
-  const std::vector<int> cores = parse_ints(o.cores, "cores");
+  const std::vector<int> threads = parse_ints(o.threads, "threads", kMaxThreads);
+  const std::vector<int> cores = parse_ints(o.cores, "cores", 1 << 20);
   if (o.rounds < 1) fail("--rounds: expected an integer >= 1, got {}", o.rounds);
 
   const MeshSequence scene = make_scene(config, reg);
@@ -99,9 +101,11 @@ int bench_command(const BenchOptions& o) {
     for (int t : threads) configs.push_back({s, t});
   std::vector<Measured> measured(configs.size());
 
-  Progress progress("ccdlab bench", long(o.rounds * configs.size()), o.progress && Progress::stderr_is_terminal());
+  // Round −1 warms caches, page tables and the OpenMP thread pools; it is not timed into any result.
+  Progress progress("ccdlab bench", long((o.rounds + 1) * configs.size()), o.progress);
   long done = 0;
-  for (int round = 0; round < o.rounds; ++round) {
+  for (int round = -1; round < o.rounds; ++round) {
+    const bool warmup = round < 0;
     for (std::size_t j = 0; j < configs.size(); ++j) {
       const std::size_t i = round % 2 == 0 ? j : configs.size() - 1 - j;  // alternate the order
       ExperimentConfig c = config;
@@ -112,11 +116,12 @@ int bench_command(const BenchOptions& o) {
       Measured& m = measured[i];
       double total = 0;
       std::uint64_t hash = contact_set_hash({});
-      m.traces.emplace_back();
+      if (!warmup) m.traces.emplace_back();
       for (int s = 0; s < steps; ++s) {
         StepResult r = pipeline.step(frames[s], frames[s + 1]);
         total += r.timings.total_ms;
         hash = contact_set_hash(r.contacts, hash);
+        if (warmup) continue;
         if (round == 0) {
           m.bv_tests += r.counters.bv_tests;
           m.candidates += r.counters.candidate_pairs;
@@ -133,11 +138,27 @@ int bench_command(const BenchOptions& o) {
         }
         m.traces.back().push_back(std::move(r.traces));
       }
-      if (round == 0) m.hash = hash;
-      else if (hash != m.hash) fail("bench: {} x{} changed its answer between rounds", configs[i].scheduler, configs[i].threads);
-      m.ms_per_step.push_back(total / steps);
+      if (warmup || round == 0) {
+        if (round == 0 && hash != m.hash)
+          fail("bench: {} x{} changed its answer between the warm-up and round 1", configs[i].scheduler, configs[i].threads);
+        m.hash = hash;
+      } else if (hash != m.hash) {
+        fail("bench: {} x{} changed its answer between rounds", configs[i].scheduler, configs[i].threads);
+      }
+      if (!warmup) m.ms_per_step.push_back(total / steps);
       progress.update(++done);
     }
+  }
+  // Rounds of one configuration that disagree by more than the noise threshold make every ratio doubtful.
+  constexpr double kNoiseThreshold = 0.10;
+  for (std::size_t i = 0; i < configs.size(); ++i) {
+    const auto [lo, hi] = std::minmax_element(measured[i].ms_per_step.begin(), measured[i].ms_per_step.end());
+    const double spread = (*hi - *lo) / median(measured[i].ms_per_step);
+    measured[i].spread = spread;
+    if (spread > kNoiseThreshold)
+      fmt::print(stderr, "ccdlab: warning: bench: {} x{}: rounds differ by {:.0f}% ({:.3f} to {:.3f} ms/step), above the "
+                 "{:.0f}% noise threshold: other load on the machine? more --rounds?\n",
+                 configs[i].scheduler, configs[i].threads, 100 * spread, *lo, *hi, 100 * kNoiseThreshold);
   }
 
   // Reference: sequential at 1 thread (or the first configuration).
@@ -150,14 +171,11 @@ int bench_command(const BenchOptions& o) {
   for (const Measured& m : measured) identical &= m.hash == measured[0].hash;
 
   namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(config.output.dir, ec);
-  if (ec) fail("output.dir: cannot create '{}': {}", config.output.dir, ec.message());
   const std::string rev = build_info::git_revision;
-  std::ofstream csv(fs::path(config.output.dir) / "bench.csv");
-  std::ofstream scaling(fs::path(config.output.dir) / "scaling.csv");
-  std::ofstream jsonl(fs::path(config.output.dir) / "bench.jsonl");
-  if (!csv || !scaling || !jsonl) fail("output.dir: cannot write results to '{}'", config.output.dir);
+  create_output_dir(config.output.dir, "output.dir");
+  auto out_path = [&](const char* name) { return (fs::path(config.output.dir) / name).string(); };
+  OutputFile csv(out_path("bench.csv"), "output.dir"), scaling(out_path("scaling.csv"), "output.dir"),
+      jsonl(out_path("bench.jsonl"), "output.dir");
   const nlohmann::json config_json = to_json(config);
   jsonl << nlohmann::json{{"type", "config"}, {"config", config_json}, {"git_revision", rev}, {"scene", scene.description()},
                           {"triangles", scene.topology().num_faces()}, {"steps", steps}, {"rounds", o.rounds}}
@@ -193,7 +211,7 @@ int bench_command(const BenchOptions& o) {
                           {"ms_per_step_min", ms_min}, {"speedup", ref_ms / ms}, {"speedup_min", ref_min / ms_min}, {"bv_tests_per_step", m.bv_tests / steps}, {"lambda", lambda},
                           {"traverse_ms_per_step", m.traverse_ms / steps}, {"serial_ms_per_step", m.serial_ms / steps},
                           {"imbalance", imb}, {"front_nodes_max", m.front_max}, {"front_bytes_max", m.front_bytes_max},
-                          {"hash", fmt::format("{:016x}", m.hash)}};
+                          {"round_spread", m.spread}, {"hash", fmt::format("{:016x}", m.hash)}};
     out_rows.push_back(row);
     jsonl << nlohmann::json{{"type", "config_result"}, {"result", row}}.dump() << "\n";
     if (!o.json)
@@ -261,6 +279,9 @@ int bench_command(const BenchOptions& o) {
   else
     fmt::print("\ncontact sets identical across all configurations: {} (hash {:016x})\nresults in {}/\n",
                identical ? "yes" : "NO", measured[0].hash, config.output.dir);
+  csv.commit();
+  scaling.commit();
+  jsonl.commit();
   return identical ? 0 : 1;
 }
 

@@ -1,15 +1,14 @@
 // `ccdlab run CONFIG.yaml [--set key=value …] [--json]`: runs an experiment step by step; prints a per-step
 // table (or one JSON summary), writes steps.csv, steps.jsonl, config.yaml (and contacts.csv) to output.dir.
 #include <filesystem>
-#include <fstream>
 
-#include <omp.h>
 #include <unistd.h>
 
 #include "ccdlab/build_info.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/report.hpp"
 #include "framework/util/error.hpp"
+#include "framework/util/files.hpp"
 #include "framework/util/progress.hpp"
 #include "strategies/registry.hpp"
 
@@ -18,24 +17,22 @@ namespace ccdlab::cli {
 int run_command(const RunOptions& o) {
   const Registries reg = builtin_registries();
   const ExperimentConfig config = load_experiment(o.config, o.overrides, reg);
-  omp_set_num_threads(config.threads);
   const nlohmann::json config_json = to_json(config);
 
   const MeshSequence scene = make_scene(config, reg);
   CcdPipeline pipeline(scene.topology(), scene.bodies(), make_strategies(config, reg));
 
+  // Results are written under temporary names and renamed when the run is complete; results of an earlier run
+  // that this one replaces are removed first, so the folder never mixes the two or shows a partial run.
   namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(config.output.dir, ec);
-  if (ec) fail("output.dir: cannot create '{}': {}", config.output.dir, ec.message());
-  auto open = [&](const std::string& name) {
-    std::ofstream f(fs::path(config.output.dir) / name);
-    if (!f) fail("output.dir: cannot write '{}'", (fs::path(config.output.dir) / name).string());
-    return f;
-  };
-  std::ofstream yaml = open("config.yaml");
+  create_output_dir(config.output.dir, "output.dir");
+  auto out_path = [&](const char* name) { return (fs::path(config.output.dir) / name).string(); };
+  for (const char* name : {"config.yaml", "steps.csv", "steps.jsonl", "contacts.csv"})
+    remove_stale_output(out_path(name), "output.dir");
+  auto open = [&](const char* name) { return OutputFile(out_path(name), "output.dir"); };
+  OutputFile yaml = open("config.yaml");
   yaml << "# resolved by ccdlab " << build_info::git_revision << " from " << config.source << "\n" << to_yaml(config_json);
-  std::ofstream csv, jsonl, contacts_csv;
+  OutputFile csv, jsonl, contacts_csv;
   const std::string rev = build_info::git_revision;
   const std::string fixed_cols = fmt::format("{},{},{},{},{},{}", config.name, config.scheduler.name, config.threads,
                                              config.k, config.tester.name, rev);
@@ -66,7 +63,7 @@ int run_command(const RunOptions& o) {
 
   // When the table rows go to the same terminal they are the progress; otherwise show a progress line.
   const bool table_on_terminal = !o.json && isatty(STDOUT_FILENO);
-  Progress progress("ccdlab run", scene.num_steps(), o.progress && Progress::stderr_is_terminal() && !table_on_terminal);
+  Progress progress("ccdlab run", scene.num_steps(), o.progress && !table_on_terminal);
   std::vector<double> total_ms, build_ms, cones_ms, swept_ms, refit_ms, traverse_ms, narrow_ms, orphan_ms;
   std::uint64_t hash = contact_set_hash({}), vf = 0, ee = 0, bv_tests = 0, candidates = 0, vf_tests = 0, ee_tests = 0, orphan_pairs = 0, orphan_tests = 0,
                 tests_filtered = 0, tests_fallback = 0;
@@ -139,6 +136,7 @@ int run_command(const RunOptions& o) {
     j["type"] = "summary";
     jsonl << j.dump() << "\n";
   }
+  for (OutputFile* f : {&yaml, &csv, &jsonl, &contacts_csv}) f->commit();
   if (o.json) {
     fmt::print("{}\n", summary.dump(2));
   } else {

@@ -1,14 +1,13 @@
 // `ccdlab step T0 T1 [--k K] [--scheduler S] [--threads N] [--tester NAME[:key=value,…]] [--contacts FILE.csv] [--json]`:
 // one CCD step between two mesh files of the same topology (one self-colliding body).
-#include <fstream>
 
-#include <omp.h>
 
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/tester_spec.hpp"
 #include "experiments/cli/report.hpp"
 #include "framework/mesh/mesh_io.hpp"
 #include "framework/util/error.hpp"
+#include "framework/util/files.hpp"
 #include "strategies/registry.hpp"
 
 namespace ccdlab::cli {
@@ -25,14 +24,14 @@ StrategyChoice choose(const R& registry, const std::string& option, const std::s
 
 int step_command(const StepOptions& o) {
   if (o.k != 6 && o.k != 14 && o.k != 18 && o.k != 26) fail("--k: expected one of 6, 14, 18, 26, got {}", o.k);
-  if (o.threads < 1) fail("--threads: expected an integer >= 1, got {}", o.threads);
+  if (o.threads < 1 || o.threads > kMaxThreads)
+    fail("--threads: expected an integer from 1 to {}, got {}", kMaxThreads, o.threads);
   PipelineStrategies s;
   s.k = o.k;
   s.threads = o.threads;
   s.builder = builder_registry().make(choose(builder_registry(), "hierarchy", o.hierarchy));
   s.scheduler = scheduler_registry().make(choose(scheduler_registry(), "scheduler", o.scheduler));
   s.tester = tester_registry().make(parse_tester(o.tester, tester_registry()));
-  omp_set_num_threads(o.threads);
 
   MeshData m0 = read_mesh(o.mesh_t0);
   MeshData m1 = read_mesh(o.mesh_t1);
@@ -41,19 +40,20 @@ int step_command(const StepOptions& o) {
   if (m1.faces != m0.faces) fail("{}: faces differ from {} (the two frames must share one topology)", o.mesh_t1, o.mesh_t0);
   TriMesh mesh;
   try {
-    mesh = TriMesh(Index(m0.positions.size()), m0.faces);
+    mesh = TriMesh(m0.positions.size(), m0.faces);
   } catch (const Error& e) {
     fail("{}: {}", o.mesh_t0, e.what());
   }
   CcdPipeline pipeline(mesh, single_cloth_body(mesh), std::move(s));
+  OutputFile contacts;  // opened before the step: an unwritable path is reported before the work
+  if (!o.contacts_csv.empty()) contacts = OutputFile(o.contacts_csv, "--contacts");
   StepResult r = pipeline.step(m0.positions, m1.positions);
   const std::uint64_t hash = contact_set_hash(r.contacts);
 
   if (!o.contacts_csv.empty()) {
-    std::ofstream f(o.contacts_csv);
-    if (!f) fail("--contacts: cannot write '{}'", o.contacts_csv);
-    f << "kind,a,b,c,d,toi\n";
-    for (const Contact& c : r.contacts) f << contact_row(c) << "\n";
+    contacts << "kind,a,b,c,d,toi\n";
+    for (const Contact& c : r.contacts) contacts << contact_row(c) << "\n";
+    contacts.commit();
   }
   if (o.json) {
     nlohmann::json j = step_json(r);

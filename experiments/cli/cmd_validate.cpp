@@ -15,6 +15,7 @@
 #include "framework/queries/evaluate.hpp"
 #include "framework/queries/hard_cases.hpp"
 #include "framework/util/error.hpp"
+#include "framework/util/files.hpp"
 #include "framework/util/progress.hpp"
 #include "strategies/registry.hpp"
 #include "strategies/testers/exact_tester.hpp"
@@ -63,13 +64,10 @@ int validate_command(const ValidateOptions& o) {
   const ExactTester exact;
   std::vector<SetScore> scores;
   // Per-query outcomes (for plots of the time distribution), written as they come when --out is given.
-  std::ofstream per_query;
+  OutputFile per_query;
   if (!o.out_dir.empty()) {
-    std::error_code ec;
-    fs::create_directories(o.out_dir, ec);
-    if (ec) fail("--out: cannot create '{}': {}", o.out_dir, ec.message());
-    per_query.open(fs::path(o.out_dir) / "queries.csv");
-    if (!per_query) fail("--out: cannot write into '{}'", o.out_dir);
+    create_output_dir(o.out_dir, "--out");
+    per_query = OutputFile((fs::path(o.out_dir) / "queries.csv").string(), "--out");
     per_query << "set,tester,query,truth,hit,route,us,toi,exact_toi\n";
   }
   std::size_t total = 0;
@@ -103,8 +101,8 @@ int validate_command(const ValidateOptions& o) {
   }
 
   if (!o.out_dir.empty()) {
-    std::ofstream csv(fs::path(o.out_dir) / "validate.csv"), jsonl(fs::path(o.out_dir) / "validate.jsonl");
-    if (!csv || !jsonl) fail("--out: cannot write into '{}'", o.out_dir);
+    OutputFile csv((fs::path(o.out_dir) / "validate.csv").string(), "--out"),
+        jsonl((fs::path(o.out_dir) / "validate.jsonl").string(), "--out");
     csv << "set,tester,queries,positives,false_negatives,false_positives,filtered,fallbacks,mean_us,median_us,p99_us,"
            "max_us,toi_max_error,toi_mean_error,toi_late,git_revision\n";
     for (const SetScore& s : scores)
@@ -120,6 +118,9 @@ int validate_command(const ValidateOptions& o) {
       j["type"] = "score";
       jsonl << j.dump() << "\n";
     }
+    per_query.commit();
+    csv.commit();
+    jsonl.commit();
   }
 
   if (o.json) {

@@ -2,13 +2,35 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstdio>
+#include <new>
+#include <string_view>
+
+#include "ccdlab/build_info.hpp"
 #include "experiments/cli/commands.hpp"
 #include "framework/util/error.hpp"
 
+namespace {
+
+// Exit codes (README): 0 success, 1 a check failed (validate --check, bench answers differ), 2 a user error
+// (bad flag, value, file or config: one "ccdlab: error: …" line), 3 an internal failure (a bug: please report).
+constexpr int kUserError = 2;
+constexpr int kInternalError = 3;
+
+int user_error(std::string_view message) {
+  fmt::print(stderr, "ccdlab: error: {}\n", message);
+  return kUserError;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace ccdlab::cli;
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // table rows reach a log or pipe as they are printed
   CLI::App app{"ccdlab: continuous collision detection for deforming cloth"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("ccdlab ") + ccdlab::build_info::git_revision);
 
   RunOptions run;
   bool no_progress = false;
@@ -58,10 +80,28 @@ int main(int argc, char** argv) {
   auto* list_cmd = app.add_subcommand("list", "registered strategies and their parameters");
   auto* info_cmd = app.add_subcommand("info", "compiler, flags, OpenMP, git revision");
 
+  // An unknown command is named (CLI11 would only say that a subcommand is required).
+  if (argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+    if (std::find(names.begin(), names.end(), argv[1]) == names.end())
+      return user_error(fmt::format("unknown command '{}', expected one of {} (ccdlab --help)", ccdlab::printable(argv[1]),
+                                    fmt::join(names, ", ")));
+  }
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp&) {
+    return app.exit(CLI::CallForHelp());
+  } catch (const CLI::CallForAllHelp&) {
+    return app.exit(CLI::CallForAllHelp());
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // Every other parse failure (unknown flag, missing argument, a value that does not convert) is a user error.
+    const CLI::App* sub = nullptr;
+    for (const CLI::App* s : app.get_subcommands()) sub = s;
+    const std::string help = sub ? fmt::format("ccdlab {} --help", sub->get_name()) : "ccdlab --help";
+    return user_error(fmt::format("{} ({})", e.what(), help));
   }
   try {
     if (*run_cmd) {
@@ -80,11 +120,18 @@ int main(int argc, char** argv) {
     if (*list_cmd) return list_command();
     if (*info_cmd) return info_command();
   } catch (const ccdlab::Error& e) {
-    fmt::print(stderr, "ccdlab: error: {}\n", e.what());
-    return 2;
+    return user_error(e.what());
+  } catch (const std::bad_alloc&) {
+    return user_error("out of memory: the run needs more memory than this machine could give (lower the scene's "
+                      "size, or set memory_limit to be told before a run starts)");
   } catch (const std::exception& e) {
-    fmt::print(stderr, "ccdlab: internal error: {}\n", e.what());
-    return 3;
+    fmt::print(stderr, "ccdlab: internal error: {}\nThis is a bug in ccdlab: please report it with the command line "
+               "and the output of 'ccdlab info'.\n", e.what());
+    return kInternalError;
+  } catch (...) {
+    fmt::print(stderr, "ccdlab: internal error: unknown exception\nThis is a bug in ccdlab: please report it with the "
+               "command line and the output of 'ccdlab info'.\n");
+    return kInternalError;
   }
   return 1;
 }

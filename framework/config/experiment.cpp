@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "framework/config/yaml_reader.hpp"
+#include "framework/util/parallel.hpp"
 
 namespace ccdlab {
 namespace {
@@ -138,7 +139,7 @@ ExperimentConfig load_experiment(const std::string& path, const std::vector<std:
     }
   }
   if (root["normal_cones"]) c.normal_cones = r.boolean(root["normal_cones"], "normal_cones");
-  if (root["threads"]) c.threads = int(r.integer(root["threads"], "threads", 1, 1024));
+  if (root["threads"]) c.threads = int(r.integer(root["threads"], "threads", 1, kMaxThreads));
   c.output.dir = "results/" + c.name;
   if (const YAML::Node o = root["output"]) {
     r.check_keys(o, "output", {"dir", "csv", "jsonl", "contacts"});

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "framework/util/files.hpp"
+
 namespace ccdlab {
 namespace {
 
@@ -108,10 +110,9 @@ ParamValues::Value YamlReader::param(const YAML::Node& node, const std::string& 
 }
 
 YAML::Node load_yaml_file(const std::string& path) {
+  const std::string text = read_file(path);  // names a missing file, a directory, an unreadable file
   try {
-    return YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    fail("{}: cannot open file", path);
+    return YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     fail("{}:{}: YAML syntax error: {}", path, e.mark.line + 1, e.msg);
   }

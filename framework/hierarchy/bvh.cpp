@@ -1,8 +1,43 @@
 #include "framework/hierarchy/bvh.hpp"
 
+#include <algorithm>
+#include <atomic>
+
 #include "framework/util/error.hpp"
 
 namespace ccdlab {
+
+std::uint64_t next_topology_version() {
+  static std::atomic<std::uint64_t> counter{0};
+  return counter.fetch_add(1, std::memory_order_relaxed);
+}
+
+const RefitPlan& BvhTopology::refit_plan() const {
+  if (plan_.version == version) return plan_;
+  plan_ = RefitPlan{};
+  plan_.version = version;
+  if (nodes.empty()) return plan_;
+  // Open nodes level by level until the level holds kSubtrees nodes (or only leaves).
+  std::vector<Index> level{0};
+  while (level.size() < RefitPlan::kSubtrees) {
+    std::vector<Index> next;
+    for (Index n : level) {
+      const BvhNode& node = nodes[n];
+      if (node.is_leaf()) {
+        next.push_back(n);
+      } else {
+        plan_.top.push_back(n);
+        next.push_back(node.left);
+        next.push_back(node.right);
+      }
+    }
+    if (next.size() == level.size()) break;  // all leaves
+    level = std::move(next);
+  }
+  plan_.subtrees = std::move(level);
+  std::sort(plan_.top.rbegin(), plan_.top.rend());
+  return plan_;
+}
 
 void compute_leaf_counts(BvhTopology& bvh) {
   bvh.leaf_count.assign(bvh.nodes.size(), 1);
@@ -51,12 +86,12 @@ void replace_subtree(BvhTopology& bvh, Index root, const BvhTopology& sub) {
     bvh.nodes[root + i] = n;
     bvh.leaf_count[root + i] = sub.leaf_count[i];
   }
-  ++bvh.version;
+  bvh.version = next_topology_version();
 }
 
 std::vector<Index> subtree_faces(const BvhTopology& bvh, Index root) {
   std::vector<Index> faces;
-  for (Index i = root; i < root + 2 * bvh.leaf_count[root] - 1; ++i)
+  for (Index i = root; i < bvh.subtree_end(root); ++i)
     if (bvh.nodes[i].is_leaf()) faces.push_back(bvh.nodes[i].face);
   return faces;
 }

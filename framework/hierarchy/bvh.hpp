@@ -25,14 +25,39 @@ struct BvhNode {
 };
 static_assert(sizeof(BvhNode) == 16, "BvhNode is 4 indices; keep it compact for traversal");
 
+/// A new topology version, never handed out before (process-wide): two different trees never share one, so
+/// "same version" means "same tree" for everything cached per topology (refit plan, normal cones, fronts).
+std::uint64_t next_topology_version();
+
+/// How a refit sweeps the tree in parallel: disjoint sub-trees, each a contiguous pre-order range refit by one
+/// backward sweep (in parallel), then the few nodes above them, bottom-up. The cut is a fixed number of
+/// sub-trees whatever the thread count, so the work (and its trace) does not depend on it.
+struct RefitPlan {
+  static constexpr std::size_t kSubtrees = 256;
+  std::uint64_t version = ~0ull;  ///< the topology version it was cut from
+  std::vector<Index> subtrees;    ///< disjoint sub-tree roots (leaves where the tree is shallow)
+  std::vector<Index> top;         ///< every inner node above the cut, in decreasing index order (bottom-up)
+};
+
 struct BvhTopology {
   std::vector<BvhNode> nodes;  ///< pre-order, nodes[0] = root; 2·leaves − 1 nodes
   std::vector<Index> leaf_count;  ///< number of leaves under each node
-  std::uint64_t version = 0;      ///< bumped whenever the topology changes (adaptive restructuring)
+  /// Changes with every change of `nodes` (a build, replace_subtree): write nodes only through those two.
+  std::uint64_t version = next_topology_version();
 
   [[nodiscard]] Index size() const { return Index(nodes.size()); }
   [[nodiscard]] Index num_leaves() const { return (size() + 1) / 2; }
+  /// One past the last node of the sub-tree rooted at r: a pre-order sub-tree is [r, r + 2·leaves(r) − 1).
+  [[nodiscard]] Index subtree_end(Index r) const { return r + 2 * leaf_count[r] - 1; }
   [[nodiscard]] std::size_t memory_bytes() const { return nodes.size() * (sizeof(BvhNode) + sizeof(Index)); }
+
+  /// The refit plan of the current topology: cut again on the first call after the version changed, so a
+  /// plan never outlives the tree it was cut from (a stale cut refits the wrong ranges and loses contacts).
+  /// Not thread-safe on that first call: call it from the pipeline's thread, outside parallel regions.
+  [[nodiscard]] const RefitPlan& refit_plan() const;
+
+ private:
+  mutable RefitPlan plan_;
 };
 
 /// Builds the tree topology over a set of faces from their bounding boxes (one per face, in the order of
@@ -57,19 +82,29 @@ void replace_subtree(BvhTopology& bvh, Index root, const BvhTopology& sub);
 /// Faces under a node (pre-order range scan).
 std::vector<Index> subtree_faces(const BvhTopology& bvh, Index root);
 
-/// Bottom-up refit: leaves take leaf_bv(face), inner nodes the merge of their children.
+/// Refits node i from its children (inner node) or from leaf_bv(face) (leaf).
+template <class BV, class LeafBv>
+void refit_node(const BvhTopology& bvh, std::vector<BV>& bvs, Index i, LeafBv&& leaf_bv) {
+  const BvhNode& n = bvh.nodes[i];
+  if (n.is_leaf()) {
+    bvs[i] = leaf_bv(n.face);
+  } else {
+    bvs[i] = bvs[n.left];
+    bvs[i].merge(bvs[n.right]);
+  }
+}
+
+/// Refits the sub-tree rooted at r (a backward sweep of its pre-order range).
+template <class BV, class LeafBv>
+void refit_subtree(const BvhTopology& bvh, std::vector<BV>& bvs, Index r, LeafBv&& leaf_bv) {
+  for (Index i = bvh.subtree_end(r) - 1; i >= r; --i) refit_node(bvh, bvs, i, leaf_bv);
+}
+
+/// Serial bottom-up refit of the whole tree: leaves take leaf_bv(face), inner nodes the merge of their children.
 template <class BV, class LeafBv>
 void refit(const BvhTopology& bvh, std::vector<BV>& bvs, LeafBv&& leaf_bv) {
   bvs.resize(bvh.nodes.size());
-  for (Index i = bvh.size() - 1; i >= 0; --i) {
-    const BvhNode& n = bvh.nodes[i];
-    if (n.is_leaf()) {
-      bvs[i] = leaf_bv(n.face);
-    } else {
-      bvs[i] = bvs[n.left];
-      bvs[i].merge(bvs[n.right]);
-    }
-  }
+  if (!bvh.nodes.empty()) refit_subtree(bvh, bvs, 0, leaf_bv);
 }
 
 }  // namespace ccdlab

@@ -8,16 +8,14 @@
 #include <sstream>
 
 #include "framework/util/error.hpp"
+#include "framework/util/files.hpp"
 
 namespace ccdlab {
 namespace {
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail("{}: cannot open file", path);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+/// Editors on some systems start text files with a UTF-8 byte-order mark; it is not part of the first record.
+void strip_utf8_bom(std::string& text) {
+  if (text.starts_with("\xEF\xBB\xBF")) text.erase(0, 3);
 }
 
 std::string extension(const std::string& path) {
@@ -71,14 +69,22 @@ double parse_double(const std::string& where, std::string_view s, const char* fi
     char* end = nullptr;
     v = std::strtod(str.c_str(), &end);
     if (end != str.c_str() + str.size() || str.empty())
-      fail("{}: {}: expected a number, got '{}'", where, field, s);
+      fail("{}: {}: expected a number, got '{}'", where, field, printable(s));
   }
   return v;
+}
+
+/// OBJ records that carry nothing ccdlab uses (texture coordinates, normals, grouping, materials, lines).
+bool is_ignored_obj_record(std::string_view r) {
+  for (std::string_view k : {"vt", "vn", "vp", "l", "p", "o", "g", "s", "mtllib", "usemtl", "cstype", "deg", "curv", "surf"})
+    if (r == k) return true;
+  return false;
 }
 
 }  // namespace
 
 MeshData read_mesh(const std::string& path) {
+  check_input_file(path);  // a missing path or a folder is named as such, not as an unknown format
   std::string ext = extension(path);
   if (ext == "obj") return read_obj(path);
   if (ext == "ply") return read_ply(path);
@@ -87,8 +93,10 @@ MeshData read_mesh(const std::string& path) {
 
 // ---------------------------------------------------------------------------------------------------------
 // OBJ: 'v x y z' and 'f a b c ...' (a may be 'a/t/n', negative = relative); other records are ignored.
-MeshData read_obj(const std::string& path) {
-  std::string text = read_file(path);
+MeshData read_obj(const std::string& path) { return parse_obj(read_file(path), path); }
+
+MeshData parse_obj(std::string text, const std::string& path) {
+  strip_utf8_bom(text);
   MeshData mesh;
   std::vector<std::pair<std::size_t, std::vector<long long>>> polygons;  // (line, 0-based indices)
   std::size_t line_no = 0, pos = 0;
@@ -112,10 +120,14 @@ MeshData read_obj(const std::string& path) {
       for (std::size_t i = 1; i < tok.size(); ++i) {
         std::string_view idx = tok[i].substr(0, tok[i].find('/'));
         long long v;
-        if (!parse_number(idx, v) || v == 0) fail("{}: face: expected a vertex index, got '{}'", where, tok[i]);
+        if (!parse_number(idx, v) || v == 0) fail("{}: face: expected a vertex index, got '{}'", where, printable(tok[i]));
         poly.push_back(v > 0 ? v - 1 : (long long)mesh.positions.size() + v);
       }
       polygons.emplace_back(line_no, std::move(poly));
+    } else if (!is_ignored_obj_record(tok[0])) {
+      // An unknown record is more likely a corrupt file than an extension: refuse rather than guess.
+      fail("{}: unknown OBJ record '{}' (expected v, f, or one of vt vn vp l p o g s mtllib usemtl)", where,
+           printable(tok[0]));
     }
   }
   for (auto& [line, poly] : polygons)
@@ -139,7 +151,7 @@ PlyType parse_ply_type(const std::string& where, std::string_view s) {
   if (s == "uint" || s == "uint32") return PlyType::u32;
   if (s == "float" || s == "float32") return PlyType::f32;
   if (s == "double" || s == "float64") return PlyType::f64;
-  fail("{}: property type: expected one of char uchar short ushort int uint float double, got '{}'", where, s);
+  fail("{}: property type: expected one of char uchar short ushort int uint float double, got '{}'", where, printable(s));
 }
 
 std::size_t ply_size(PlyType t) {
@@ -235,8 +247,10 @@ class AsciiCursor {
 
 }  // namespace
 
-MeshData read_ply(const std::string& path) {
-  std::string data = read_file(path);
+MeshData read_ply(const std::string& path) { return parse_ply(read_file(path), path); }
+
+MeshData parse_ply(std::string data, const std::string& path) {
+  strip_utf8_bom(data);
   // --- header ---
   std::size_t pos = 0, line_no = 0;
   auto next_line = [&]() -> std::string_view {
@@ -249,7 +263,8 @@ MeshData read_ply(const std::string& path) {
     ++line_no;
     return line;
   };
-  if (next_line() != "ply") fail("{}:1: not a PLY file (first line must be 'ply')", path);
+  if (const auto first = next_line(); first != "ply")
+    fail("{}:1: not a PLY file (first line must be 'ply', got '{}')", path, printable(first));
   std::string format;
   std::vector<PlyElement> elements;
   for (;;) {
@@ -261,11 +276,11 @@ MeshData read_ply(const std::string& path) {
       if (tok.size() < 2) fail("{}: format: expected ascii, binary_little_endian or binary_big_endian", where);
       format = std::string(tok[1]);
       if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
-        fail("{}: format: expected ascii, binary_little_endian or binary_big_endian, got '{}'", where, format);
+        fail("{}: format: expected ascii, binary_little_endian or binary_big_endian, got '{}'", where, printable(format));
     } else if (tok[0] == "element") {
       std::size_t count;
       if (tok.size() != 3 || !parse_number(tok[2], count))
-        fail("{}: element: expected 'element NAME COUNT', got '{}'", where, fmt::join(tok, " "));
+        fail("{}: element: expected 'element NAME COUNT', got '{}'", where, printable(fmt::format("{}", fmt::join(tok, " ")), 64));
       elements.push_back({std::string(tok[1]), count, {}});
     } else if (tok[0] == "property") {
       if (elements.empty()) fail("{}: property before any element", where);
@@ -283,7 +298,7 @@ MeshData read_ply(const std::string& path) {
       }
       elements.back().properties.push_back(p);
     } else {
-      fail("{}: unknown header keyword '{}'", where, tok[0]);
+      fail("{}: unknown header keyword '{}'", where, printable(tok[0]));
     }
   }
   if (format.empty()) fail("{}: header has no 'format' line", path);
@@ -307,8 +322,22 @@ MeshData read_ply(const std::string& path) {
     if (is_vertex && (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0))
       fail("{}: element vertex: properties x, y, z are required", path);
     if (is_face && face_list < 0) fail("{}: element face: property list vertex_indices is required", path);
-    if (is_vertex) mesh.positions.resize(el.count), have_vertices = true;
+    if (is_vertex) have_vertices = true;
     if (is_face) have_faces = true;
+    if (el.properties.empty()) continue;  // nothing to read, whatever the count
+    // The header's count is a claim: check it against the bytes the file really has before allocating.
+    // (ASCII: a loose bound, one value and a separator per item, so that an ordinary truncation is still
+    // reported where it happens, with its line.)
+    std::size_t min_item_bytes = ascii ? 2 : 0;
+    if (!ascii)
+      for (const auto& p : el.properties) min_item_bytes += ply_size(p.is_list ? p.count_type : p.type);
+    const std::size_t body_bytes = data.size() - pos;
+    if (el.count > (body_bytes + 1) / min_item_bytes)
+      fail("{}: element {} {}: the header declares more items than the file can hold ({} bytes after the header, "
+           "at least {} per item)", path, el.name, el.count, body_bytes, min_item_bytes);
+    if (is_vertex && el.count > TriMesh::kMaxVertices)
+      fail("{}: element vertex {}: more than ccdlab's 32-bit vertex ids allow ({})", path, el.count, TriMesh::kMaxVertices);
+    if (is_vertex) mesh.positions.resize(el.count);
     std::vector<long long> poly;
     for (std::size_t k = 0; k < el.count; ++k) {
       std::size_t line_of_item = txt.line() + 1;
@@ -317,10 +346,16 @@ MeshData read_ply(const std::string& path) {
         auto read = [&](PlyType t) { return ascii ? txt.read(t, el.name, k, p.name) : bin.read(t, el.name, k); };
         if (p.is_list) {
           double n = read(p.count_type);
+          if (!(n >= 0) || n != std::floor(n) || n > double(data.size()))
+            fail("{}: element {} {}: list {}: expected a count from 0 to the file size, got {}", path, el.name, k, p.name, n);
           if (is_face && int(i) == face_list) poly.clear();
           for (long long j = 0; j < (long long)n; ++j) {
             double v = read(p.type);
-            if (is_face && int(i) == face_list) poly.push_back((long long)v);
+            if (is_face && int(i) == face_list) {
+              if (!(std::fabs(v) <= 0x1p62) || v != std::floor(v))
+                fail("{}: element face {}: vertex index: expected an integer, got {}", path, k, v);
+              poly.push_back((long long)v);
+            }
           }
         } else {
           double v = read(p.type);

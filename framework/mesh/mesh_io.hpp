@@ -22,6 +22,9 @@ enum class PlyEncoding { ascii, binary_little_endian, binary_big_endian };
 MeshData read_mesh(const std::string& path);
 MeshData read_obj(const std::string& path);
 MeshData read_ply(const std::string& path);
+/// The same parsers on a file's content; `name` is used in errors (the path, or a label). For fuzzing and tests.
+MeshData parse_obj(std::string text, const std::string& name);
+MeshData parse_ply(std::string data, const std::string& name);
 
 void write_obj(const std::string& path, const Positions& positions, const std::vector<Face>& faces);
 void write_ply(const std::string& path, const Positions& positions, const std::vector<Face>& faces,

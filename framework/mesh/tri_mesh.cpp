@@ -31,7 +31,12 @@ struct UnionFind {
 
 }  // namespace
 
-TriMesh::TriMesh(Index num_vertices, std::vector<Face> faces) : num_vertices_(num_vertices), faces_(std::move(faces)) {
+TriMesh::TriMesh(std::size_t num_vertices, std::vector<Face> faces) : faces_(std::move(faces)) {
+  if (num_vertices > kMaxVertices)
+    fail("{} vertices: more than ccdlab's 32-bit vertex ids allow ({})", num_vertices, kMaxVertices);
+  if (faces_.size() > kMaxFaces)
+    fail("{} faces: more than ccdlab's 32-bit feature ids allow ({})", faces_.size(), kMaxFaces);
+  num_vertices_ = Index(num_vertices);
   const Index nf = num_faces();
   for (Index f = 0; f < nf; ++f) {
     const Face& t = faces_[f];

@@ -5,6 +5,7 @@
 // the convention of the shared CCD query data (../shared/data/README.md).
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -29,8 +30,13 @@ class TriMesh {
  public:
   TriMesh() = default;
   /// Validates and builds the topology. Throws Error (naming the face) for an index out of range, a face
-  /// that repeats a vertex, or a duplicate face (same vertex set).
-  TriMesh(Index num_vertices, std::vector<Face> faces);
+  /// that repeats a vertex, or a duplicate face (same vertex set), and for a mesh too large for 32-bit
+  /// feature ids (Index): more than kMaxVertices vertices or kMaxFaces faces.
+  TriMesh(std::size_t num_vertices, std::vector<Face> faces);
+
+  /// Feature ids are Index (int32): vertices and faces below 2³¹, and half-edges (3 per face) too.
+  static constexpr std::size_t kMaxVertices = std::size_t(std::numeric_limits<Index>::max());
+  static constexpr std::size_t kMaxFaces = kMaxVertices / 3;
 
   [[nodiscard]] Index num_vertices() const { return num_vertices_; }
   [[nodiscard]] Index num_faces() const { return Index(faces_.size()); }

@@ -18,7 +18,7 @@ std::vector<FacePair> brute_force_candidates(const TriMesh& mesh, const Collisio
 }
 
 std::vector<Contact> brute_force_contacts(const TriMesh& mesh, const CollisionRules& rules, const Positions& x_t0,
-                                          const Positions& x_t1, const PrimitiveTester& tester) {
+                                          const Positions& x_t1, const PrimitiveTester& tester, bool box_cull) {
   Ownership unused;
   NarrowPhase narrow(mesh, unused, tester);
   narrow.begin_step(x_t0, x_t1);
@@ -29,13 +29,13 @@ std::vector<Contact> brute_force_contacts(const TriMesh& mesh, const CollisionRu
     if (bv < 0) continue;
     for (Index f = 0; f < mesh.num_faces(); ++f)
       if (!contains_vertex(mesh.face(f), v) && rules.bodies_interact(bv, rules.body_of_face(f)))
-        narrow.test_vf(v, f, contacts, counters, /*box_cull=*/false);
+        narrow.test_vf(v, f, contacts, counters, box_cull);
   }
   for (Index a = 0; a < mesh.num_edges(); ++a)
     for (Index b = a + 1; b < mesh.num_edges(); ++b)
       if (!shares_vertex(mesh.edge(a), mesh.edge(b)) &&
           rules.bodies_interact(rules.body_of_vertex(mesh.edge(a)[0]), rules.body_of_vertex(mesh.edge(b)[0])))
-        narrow.test_ee(a, b, contacts, counters, /*box_cull=*/false);
+        narrow.test_ee(a, b, contacts, counters, box_cull);
   sort_contacts(contacts);
   return contacts;
 }

@@ -14,8 +14,11 @@ namespace ccdlab {
 std::vector<FacePair> brute_force_candidates(const TriMesh& mesh, const CollisionRules& rules, const AnyBvs& face_bvs);
 
 /// All colliding feature pairs: every VF (v ∉ f) and EE (no shared vertex) pair of interacting bodies,
-/// each tested with `tester`. Sorted like CcdPipeline's contacts.
+/// each tested with `tester`. Sorted like CcdPipeline's contacts. With `box_cull`, pairs whose swept feature
+/// boxes are disjoint are skipped as the pipeline skips them: the reference for testers that may report a
+/// near miss as a hit (`float` within its tolerance), where the question is only whether the BVH, the
+/// ownership rule and the culling lost a pair.
 std::vector<Contact> brute_force_contacts(const TriMesh& mesh, const CollisionRules& rules, const Positions& x_t0,
-                                          const Positions& x_t1, const PrimitiveTester& tester);
+                                          const Positions& x_t1, const PrimitiveTester& tester, bool box_cull = false);
 
 }  // namespace ccdlab

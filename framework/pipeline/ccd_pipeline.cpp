@@ -53,7 +53,8 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
       owners_(assign_owners(mesh)),
       narrow_(mesh_, owners_, *strategies_.tester),
       face_bvs_(make_bvs(strategies_.k)) {
-  if (strategies_.threads < 1) fail("threads: expected an integer >= 1, got {}", strategies_.threads);
+  if (strategies_.threads < 1 || strategies_.threads > kMaxThreads)
+    fail("threads: expected an integer from 1 to {}, got {}", kMaxThreads, strategies_.threads);
   if (strategies_.normal_cones && strategies_.tester->thickness() > 0)
     fail("normal_cones: culling is exact only for contact at zero distance; got tester thickness {}",
          strategies_.tester->thickness());
@@ -91,30 +92,7 @@ void CcdPipeline::build_hierarchies(const Positions& x_t0, const Positions& x_t1
         boxes[i].grow(x_t1[v]);
       }
     body.bvh = strategies_.builder->build(body.faces, boxes);
-    // Cut the tree into disjoint sub-trees (level by level) for the parallel refit.
-    body.refit_subtrees.clear();
-    body.refit_top.clear();
     if (body.bvh.nodes.empty()) continue;
-    std::vector<Index> level{0};
-    // A fixed number of sub-trees, whatever the thread count: the work (and its trace) does not depend on it.
-    constexpr std::size_t want = 256;
-    while (level.size() < want) {
-      std::vector<Index> next;
-      for (Index n : level) {
-        const BvhNode& node = body.bvh.nodes[n];
-        if (node.is_leaf()) {
-          next.push_back(n);
-        } else {
-          body.refit_top.push_back(n);
-          next.push_back(node.left);
-          next.push_back(node.right);
-        }
-      }
-      if (next.size() == level.size()) break;  // all leaves
-      level = std::move(next);
-    }
-    body.refit_subtrees = std::move(level);
-    std::sort(body.refit_top.rbegin(), body.refit_top.rend());
     // Restructuring units, independent of the thread count.
     body.restructure_roots.clear();
     const Index max_leaves = std::max<Index>(64, body.bvh.num_leaves() / 64);
@@ -142,7 +120,7 @@ double subtree_quality(const BvhTopology& bvh, const Vec& bvs, Index root) {
   const double root_size = bvs[root].size_measure();
   if (!(root_size > 0)) return 0;
   double sum = 0;
-  for (Index i = root; i < root + 2 * bvh.leaf_count[root] - 1; ++i)
+  for (Index i = root; i < bvh.subtree_end(root); ++i)
     if (!bvh.nodes[i].is_leaf()) sum += bvs[i].size_measure();
   return sum / root_size;
 }
@@ -185,16 +163,11 @@ std::uint64_t CcdPipeline::restructure(const Positions& x_t0, const Positions& x
           for (std::size_t u = 0; u < units; ++u) {
             if (!degraded[u]) continue;
             const Index r = body.restructure_roots[u];
+            // A new topology version: the refit plan, normal cones and fronts are cut again from it.
             replace_subtree(bvh, r, replacement[u]);
-            for (Index i = r + 2 * bvh.leaf_count[r] - 2; i >= r; --i) {
-              const BvhNode& n = bvh.nodes[i];
-              if (n.is_leaf()) node_bvs[i] = leaf[n.face];
-              else node_bvs[i] = node_bvs[n.left], node_bvs[i].merge(node_bvs[n.right]);
-            }
-            for (Index p = bvh.nodes[r].parent; p >= 0; p = bvh.nodes[p].parent) {
-              node_bvs[p] = node_bvs[bvh.nodes[p].left];
-              node_bvs[p].merge(node_bvs[bvh.nodes[p].right]);
-            }
+            const auto leaf_bv = [&](Index f) { return leaf[f]; };
+            refit_subtree(bvh, node_bvs, r, leaf_bv);
+            for (Index p = bvh.nodes[r].parent; p >= 0; p = bvh.nodes[p].parent) refit_node(bvh, node_bvs, p, leaf_bv);
             body.quality_ref[u] = subtree_quality(bvh, node_bvs, r);
             ++rebuilt;
           }
@@ -211,25 +184,14 @@ void CcdPipeline::refit_body(BodyState& body, PhaseTrace& trace) {
         using Vec = std::decay_t<decltype(node_bvs)>;
         const Vec& leaf = std::get<Vec>(face_bvs_);
         const BvhTopology& bvh = body.bvh;
+        const RefitPlan& plan = bvh.refit_plan();  // cut again whenever restructuring changed the topology
+        const auto leaf_bv = [&](Index f) { return leaf[f]; };
         node_bvs.resize(bvh.nodes.size());
-        auto refit_node = [&](Index i) {
-          const BvhNode& n = bvh.nodes[i];
-          if (n.is_leaf()) {
-            node_bvs[i] = leaf[n.face];
-          } else {
-            node_bvs[i] = node_bvs[n.left];
-            node_bvs[i].merge(node_bvs[n.right]);
-          }
-        };
-        // A sub-tree rooted at r is the pre-order range [r, r + 2·leaves(r) − 1): sweep it backwards.
-        parallel_chunks(body.refit_subtrees.size(), 1, strategies_.threads, trace, [&](std::size_t b, std::size_t e, int) {
-          for (std::size_t s = b; s < e; ++s) {
-            const Index r = body.refit_subtrees[s];
-            for (Index i = r + 2 * bvh.leaf_count[r] - 2; i >= r; --i) refit_node(i);
-          }
+        parallel_chunks(plan.subtrees.size(), 1, strategies_.threads, trace, [&](std::size_t b, std::size_t e, int) {
+          for (std::size_t s = b; s < e; ++s) refit_subtree(bvh, node_bvs, plan.subtrees[s], leaf_bv);
         });
         const auto t0 = Clock::now();
-        for (Index i : body.refit_top) refit_node(i);
+        for (Index i : plan.top) refit_node(bvh, node_bvs, i, leaf_bv);
         trace.serial_ms += ms_since(t0);
       },
       body.node_bvs);
@@ -321,7 +283,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
       if (!body.cones || body.cones_version != body.bvh.version) {
         // One-time topology analysis (which patches are disks): build time, like the BVH's.
         const auto tb = Clock::now();
-        body.cones = std::make_unique<NormalConeCuller>(mesh_, body.bvh);
+        body.cones = std::make_unique<NormalConeCuller>(mesh_, body.bvh, threads);
         body.cones_version = body.bvh.version;
         const double ms = ms_since(tb);
         tm.build_ms += ms;

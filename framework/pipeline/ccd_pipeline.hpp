@@ -62,10 +62,6 @@ class CcdPipeline {
     std::vector<Index> faces;
     BvhTopology bvh;
     AnyBvs node_bvs;
-    // Parallel refit: disjoint sub-trees refit in parallel (each a contiguous pre-order range), then the few
-    // nodes above them, bottom-up.
-    std::vector<Index> refit_subtrees;
-    std::vector<Index> refit_top;  ///< in decreasing index order
     // Adaptive restructuring units: disjoint sub-trees of ≤ max(64, n/64) leaves, and their reference quality.
     std::vector<Index> restructure_roots;
     std::vector<double> quality_ref;

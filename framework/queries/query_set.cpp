@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "framework/util/error.hpp"
+#include "framework/util/files.hpp"
 
 namespace ccdlab {
 namespace fs = std::filesystem;
@@ -61,8 +62,10 @@ ContactKind kind_of(const fs::path& file) {
 }
 
 std::vector<char> read_truth_json(const fs::path& json_path, std::size_t expected, const fs::path& csv) {
+  std::error_code ec;
+  if (!fs::exists(json_path, ec)) fail("{}: no ground truth: 6-column queries need {}", csv.string(), json_path.string());
+  check_input_file(json_path.string());
   std::ifstream in(json_path);
-  if (!in) fail("{}: no ground truth: 6-column queries need {}", csv.string(), json_path.string());
   nlohmann::json j;
   try {
     in >> j;
@@ -87,8 +90,8 @@ struct FileQueries {
 };
 
 FileQueries read_csv(const fs::path& file) {
+  check_input_file(file.string());
   std::ifstream in(file);
-  if (!in) fail("{}: cannot open file", file.string());
   FileQueries out;
   std::string line;
   int line_no = 0, columns = 0;

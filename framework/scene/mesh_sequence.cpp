@@ -50,7 +50,7 @@ MeshSequence load_frame_files(const std::vector<std::string>& files, bool self_c
   MeshData first = read_mesh(files[0]);
   TriMesh topology;
   try {
-    topology = TriMesh(Index(first.positions.size()), first.faces);
+    topology = TriMesh(first.positions.size(), first.faces);
   } catch (const Error& e) {
     fail("{}: {}", files[0], e.what());
   }
@@ -72,6 +72,9 @@ MeshSequence load_frame_files(const std::vector<std::string>& files, bool self_c
     }
     return std::move(m.positions);
   };
+  // Every input is read and checked (format, counts, faces, finite coordinates) before the first step: a bad
+  // frame 900 is reported now, not after hours of steps with a partial result left behind.
+  for (int i = 1; i < int(files.size()); ++i) (void)source(i);
   Body body{"mesh", BodyKind::cloth, self_collision, 0, topology.num_vertices(), 0, topology.num_faces()};
   std::string desc = fmt::format("{} .. {} ({} frames)", files.front(), files.back(), files.size());
   return MeshSequence(std::move(topology), {body}, std::move(labels), std::move(source), std::move(desc));

@@ -41,7 +41,8 @@ class MeshSequence {
 std::vector<std::string> expand_frame_pattern(const std::string& pattern, int first, int last);
 
 /// A sequence read from mesh files (OBJ or PLY), one self-colliding cloth body. The first file defines the
-/// topology; every later file must have the same vertex count and the same faces, else Error names it.
+/// topology; every later file must have the same vertex count and the same faces, else Error names it. Every
+/// file is read and checked once here, before any step; frames are read again on demand.
 MeshSequence load_frame_files(const std::vector<std::string>& files, bool self_collision = true);
 
 }  // namespace ccdlab

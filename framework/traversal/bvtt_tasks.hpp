@@ -57,45 +57,22 @@ std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t wa
 template <class BV>
 void run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, int threads, Distribution dist,
                     TraversalOutput& out, PhaseTrace& trace) {
-  using Clock = std::chrono::steady_clock;
-  std::vector<PerThread<TraversalOutput>> local(threads);
-  trace.distribution = dist;
-  trace.task_ms.assign(tasks.size(), 0.0);
-  trace.thread_ms.assign(threads, 0.0);
-  auto run_one = [&](std::size_t i, int tid, std::vector<BvttNode>& stack) {
-    const auto t0 = Clock::now();
-    TraversalOutput& o = local[tid].value;
-    // traverse_bvtt clears nothing in `o` but appends; it needs its own stack.
-    traverse_bvtt(v, tasks[i], stack, o);
-    const double ms = ms_between(t0, Clock::now());
-    trace.task_ms[i] = ms;
-    trace.thread_ms[tid] += ms;
+  struct Local {
+    TraversalOutput out;
+    std::vector<BvttNode> stack;  // traverse_bvtt appends to `out` and needs its own stack
   };
-  if (dist == Distribution::dynamic) {
-#pragma omp parallel num_threads(threads)
-    {
-      std::vector<BvttNode> stack;
-      const int tid = omp_get_thread_num();
-#pragma omp for schedule(dynamic, 1)
-      for (std::ptrdiff_t i = 0; i < std::ptrdiff_t(tasks.size()); ++i) run_one(std::size_t(i), tid, stack);
-    }
-  } else {
-#pragma omp parallel num_threads(threads)
-    {
-      std::vector<BvttNode> stack;
-      const int tid = omp_get_thread_num(), nt = omp_get_num_threads();
-      const std::size_t begin = tasks.size() * std::size_t(tid) / std::size_t(nt);
-      const std::size_t end = tasks.size() * std::size_t(tid + 1) / std::size_t(nt);
-      for (std::size_t i = begin; i < end; ++i) run_one(i, tid, stack);
-    }
-  }
-  const auto t0 = Clock::now();
+  std::vector<PerThread<Local>> local(threads);
+  parallel_tasks(tasks.size(), threads, dist, trace, [&](std::size_t i, int tid) {
+    Local& l = local[tid].value;
+    traverse_bvtt(v, tasks[i], l.stack, l.out);
+  });
+  const auto t0 = std::chrono::steady_clock::now();
   for (const auto& l : local) {
-    const TraversalOutput& o = l.value;
+    const TraversalOutput& o = l.value.out;
     out.pairs.insert(out.pairs.end(), o.pairs.begin(), o.pairs.end());
     out.bv_tests += o.bv_tests;
   }
-  trace.serial_ms += ms_between(t0, Clock::now());
+  trace.serial_ms += ms_between(t0, std::chrono::steady_clock::now());
 }
 
 }  // namespace ccdlab

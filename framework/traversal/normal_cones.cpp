@@ -5,7 +5,6 @@
 #include <chrono>
 #include <numeric>
 
-#include <omp.h>
 
 namespace ccdlab {
 namespace {
@@ -161,25 +160,11 @@ bool single_loop(const std::vector<std::array<Index, 4>>& boundary) {
 
 }  // namespace
 
-NormalConeCuller::NormalConeCuller(const TriMesh& mesh, const BvhTopology& bvh) : mesh_(mesh), bvh_(bvh) {
+NormalConeCuller::NormalConeCuller(const TriMesh& mesh, const BvhTopology& bvh, int threads) : mesh_(mesh), bvh_(bvh) {
   const Index n = bvh.size();
   is_disk_.assign(n, 0);
   cone_.resize(n);
   skip_root_.assign(n, -1);
-  // Fixed cut: open nodes level by level until 256 sub-trees (or leaves).
-  std::vector<Index> level{0};
-  while (level.size() < 256) {
-    std::vector<Index> next;
-    for (Index i : level) {
-      if (bvh.nodes[i].is_leaf()) next.push_back(i);
-      else top_.push_back(i), next.push_back(bvh.nodes[i].left), next.push_back(bvh.nodes[i].right);
-    }
-    if (next.size() == level.size()) break;
-    level = std::move(next);
-  }
-  subtrees_ = std::move(level);
-  std::sort(top_.begin(), top_.end());
-
   // Disk analysis, bottom-up: a node's patch from its children's (O(boundary) per node).
   const std::vector<char> bad = non_manifold_faces(mesh);
   std::vector<PatchInfo> info(n);
@@ -201,12 +186,14 @@ NormalConeCuller::NormalConeCuller(const TriMesh& mesh, const BvhTopology& bvh) 
     is_disk_[i] = bvh.leaf_count[i] >= kMinLeaves && p.ok && p.components == 1 && p.closed == 0 &&
                   p.vertices - p.edges + p.faces == 1 && single_loop(p.boundary);
   };
-#pragma omp parallel for schedule(dynamic, 1)
-  for (std::ptrdiff_t k = 0; k < std::ptrdiff_t(subtrees_.size()); ++k) {
-    const Index r = subtrees_[std::size_t(k)];
-    for (Index i = r + 2 * bvh.leaf_count[r] - 2; i >= r; --i) analyse(i);
-  }
-  for (auto it = top_.rbegin(); it != top_.rend(); ++it) analyse(*it);
+  // Bottom-up along the tree's refit plan: its sub-trees in parallel, then the nodes above them.
+  const RefitPlan& plan = bvh.refit_plan();
+  PhaseTrace unused;
+  parallel_chunks(plan.subtrees.size(), 1, threads, unused, [&](std::size_t k, std::size_t, int) {
+    const Index r = plan.subtrees[k];
+    for (Index i = bvh.subtree_end(r) - 1; i >= r; --i) analyse(i);
+  });
+  for (Index i : plan.top) analyse(i);
 
   boundary_.offsets.assign(n + 1, 0);
   for (Index i = 0; i < n; ++i) boundary_.offsets[i + 1] = boundary_.offsets[i] + (is_disk_[i] ? 2 * Index(info[i].boundary.size()) : 0);
@@ -268,17 +255,18 @@ std::uint64_t NormalConeCuller::update(const Positions& x0, const Positions& x1,
     return Cone{axis, half + 1e-9};
   };
   // 1. Cones bottom-up inside each sub-tree of the cut (parallel), then above it (serial).
+  const RefitPlan& plan = bvh_.refit_plan();
   PhaseTrace part;
-  parallel_chunks(subtrees_.size(), 1, threads, part, [&](std::size_t k, std::size_t, int) {
-    const Index r = subtrees_[k];
-    for (Index i = r + 2 * bvh_.leaf_count[r] - 2; i >= r; --i) {
+  parallel_chunks(plan.subtrees.size(), 1, threads, part, [&](std::size_t k, std::size_t, int) {
+    const Index r = plan.subtrees[k];
+    for (Index i = bvh_.subtree_end(r) - 1; i >= r; --i) {
       if (bvh_.nodes[i].is_leaf()) cone_[i] = face_cone(i);
       else merge_children(i);
     }
   });
   trace.task_ms = part.task_ms;
   auto t0 = Clock::now();
-  for (auto it = top_.rbegin(); it != top_.rend(); ++it) merge_children(*it);
+  for (Index i : plan.top) merge_children(i);
   // 2. Skips top-down: above the cut (serial), then inside each sub-tree (parallel).
   std::uint64_t edges = 0, skipped = 0;
   auto decide = [&](Index i, std::uint64_t& e, std::uint64_t& s) {
@@ -287,13 +275,13 @@ std::uint64_t NormalConeCuller::update(const Positions& x0, const Positions& x1,
     else if (bvh_.leaf_count[i] >= kMinLeaves && passes(i, x0, x1, e)) skip_root_[i] = i, ++s;
     else skip_root_[i] = -1;
   };
-  for (Index i : top_) decide(i, edges, skipped);
+  for (auto it = plan.top.rbegin(); it != plan.top.rend(); ++it) decide(*it, edges, skipped);
   trace.serial_ms += ms_between(t0, Clock::now());
   std::vector<PerThread<std::array<std::uint64_t, 2>>> counts(threads);
-  parallel_chunks(subtrees_.size(), 1, threads, part, [&](std::size_t k, std::size_t, int tid) {
-    const Index r = subtrees_[k];
+  parallel_chunks(plan.subtrees.size(), 1, threads, part, [&](std::size_t k, std::size_t, int tid) {
+    const Index r = plan.subtrees[k];
     auto& c = counts[tid].value;
-    for (Index i = r; i < r + 2 * bvh_.leaf_count[r] - 1; ++i) decide(i, c[0], c[1]);
+    for (Index i = r; i < bvh_.subtree_end(r); ++i) decide(i, c[0], c[1]);
   });
   trace.task_ms.insert(trace.task_ms.end(), part.task_ms.begin(), part.task_ms.end());
   for (const auto& c : counts) edges += c.value[0], skipped += c.value[1];

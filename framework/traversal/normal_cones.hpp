@@ -27,11 +27,12 @@ namespace ccdlab {
 class NormalConeCuller {
  public:
   /// Precomputes, per node with ≥ kMinLeaves faces, whether its patch is a disk and its oriented boundary.
-  NormalConeCuller(const TriMesh& mesh, const BvhTopology& bvh);
+  /// `bvh` must outlive the culler, which is valid for its current topology version only.
+  NormalConeCuller(const TriMesh& mesh, const BvhTopology& bvh, int threads = 1);
 
   /// Per step: face cones, merged bottom-up, then for every node the topmost ancestor-or-self whose self
   /// test can be skipped (or −1), evaluated top-down (no contour test below a skipped node). Parallel over a
-  /// fixed cut of sub-trees; task costs go to `trace`. Returns the number of topmost skipped nodes.
+  /// the tree's refit plan (its fixed cut of sub-trees); task costs go to `trace`. Returns the number of topmost skipped nodes.
   std::uint64_t update(const Positions& x_t0, const Positions& x_t1, int threads, PhaseTrace& trace);
 
   /// Topmost skipped ancestor-or-self of each node this step, −1 if none (what traversals read).
@@ -56,8 +57,6 @@ class NormalConeCuller {
   Adjacency boundary_;  ///< per node: boundary edges as (u, w) vertex pairs, flattened u0 w0 u1 w1 …
   std::vector<Cone> cone_;
   std::vector<Index> skip_root_;
-  std::vector<Index> subtrees_;  ///< fixed cut for parallel work (pre-order ranges)
-  std::vector<Index> top_;       ///< nodes above the cut, increasing index
   std::uint64_t contour_edge_tests_ = 0;
 };
 

@@ -3,6 +3,7 @@
 // "file:line: field: expected …, got …". Thrown once at the boundary; algorithms assume valid input.
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -12,6 +13,19 @@ class Error : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// `text` cut to `max` characters with every byte outside printable ASCII written as \xNN: file content
+/// quoted in an error message (a corrupt or binary file) stays one readable line.
+inline std::string printable(std::string_view text, std::size_t max = 32) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size() && i < max; ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f) out += char(c);
+    else out += fmt::format("\\x{:02x}", c);
+  }
+  if (text.size() > max) out += "...";
+  return out;
+}
 
 /// Throws Error with a fmt-formatted message.
 template <class... Args>

@@ -1,10 +1,14 @@
 #pragma once
-// OpenMP helpers shared by the pipeline stages and the schedulers. Every parallel phase records a PhaseTrace —
+// The executor: every parallel loop of ccdlab (pipeline stages, schedulers) runs through parallel_tasks. Every parallel phase records a PhaseTrace —
 // its serial part and the cost of each task — so a run can be replayed on N simulated cores
 // (framework/pipeline/schedule_sim.hpp). Results never depend on the thread count: workers write to
 // thread-local buffers that are merged, and contacts are sorted at the end of a step.
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <exception>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -34,23 +38,77 @@ inline double ms_between(std::chrono::steady_clock::time_point a, std::chrono::s
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
+/// The most threads any stage may use (YAML `threads`, CLI `--threads`): far more than a machine has cores, far
+/// fewer than the OpenMP runtime can create before it fails (100,000 threads crash it).
+constexpr int kMaxThreads = 1024;
+
+/// The first exception thrown by any task of a parallel region, rethrown on the calling thread once the region
+/// is over: an exception escaping an OpenMP region would end the program through std::terminate. Tasks that
+/// start after a failure are skipped, so a failing region ends quickly.
+class TaskErrors {
+ public:
+  template <class F>
+  void run(F&& f) noexcept {
+    if (failed_.load(std::memory_order_relaxed)) return;
+    try {
+      f();
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!first_) first_ = std::current_exception();
+      failed_.store(true, std::memory_order_relaxed);
+    }
+  }
+  void rethrow_if_failed() const {
+    if (first_) std::rethrow_exception(first_);
+  }
+
+ private:
+  std::atomic<bool> failed_{false};
+  std::mutex mutex_;
+  std::exception_ptr first_;
+};
+
+/// Runs task(i, thread) for i in [0, n) on `threads` threads: handed out one at a time to whichever thread is
+/// free (Distribution::dynamic) or as `threads` equal-count contiguous ranges fixed before the start
+/// (Distribution::static_chunks). Records each task's cost and each thread's busy time in `trace`. The one
+/// place ccdlab opens an OpenMP region: exceptions come back to the caller (TaskErrors).
+template <class Task>
+void parallel_tasks(std::size_t n, int threads, Distribution dist, PhaseTrace& trace, Task&& task) {
+  using Clock = std::chrono::steady_clock;
+  trace.distribution = dist;
+  trace.task_ms.assign(n, 0.0);
+  trace.thread_ms.assign(std::size_t(threads), 0.0);
+  TaskErrors errors;
+  auto timed = [&](std::size_t i, int tid) {
+    const auto t0 = Clock::now();
+    errors.run([&] { task(i, tid); });
+    const double ms = ms_between(t0, Clock::now());
+    trace.task_ms[i] = ms;
+    trace.thread_ms[std::size_t(tid)] += ms;
+  };
+  if (dist == Distribution::dynamic) {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (std::ptrdiff_t i = 0; i < std::ptrdiff_t(n); ++i) timed(std::size_t(i), omp_get_thread_num());
+  } else {
+#pragma omp parallel num_threads(threads)
+    {
+      const int tid = omp_get_thread_num(), nt = omp_get_num_threads();
+      const std::size_t begin = n * std::size_t(tid) / std::size_t(nt), end = n * std::size_t(tid + 1) / std::size_t(nt);
+      for (std::size_t i = begin; i < end; ++i) timed(i, tid);
+    }
+  }
+  errors.rethrow_if_failed();
+}
+
 /// Runs body(begin, end, thread) over [0, n) in chunks of `chunk`, handed out dynamically to `threads` threads;
 /// records each chunk's cost and each thread's busy time in `trace`.
 template <class Body>
 void parallel_chunks(std::size_t n, std::size_t chunk, int threads, PhaseTrace& trace, Body&& body) {
-  using Clock = std::chrono::steady_clock;
-  const std::ptrdiff_t chunks = std::ptrdiff_t((n + chunk - 1) / chunk);
-  trace.task_ms.assign(std::size_t(chunks), 0.0);
-  trace.thread_ms.assign(std::size_t(threads), 0.0);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (std::ptrdiff_t c = 0; c < chunks; ++c) {
-    const auto t0 = Clock::now();
-    const std::size_t begin = std::size_t(c) * chunk;
-    body(begin, std::min(n, begin + chunk), omp_get_thread_num());
-    const double ms = ms_between(t0, Clock::now());
-    trace.task_ms[std::size_t(c)] = ms;
-    trace.thread_ms[std::size_t(omp_get_thread_num())] += ms;
-  }
+  const std::size_t chunks = (n + chunk - 1) / chunk;
+  parallel_tasks(chunks, threads, Distribution::dynamic, trace, [&](std::size_t c, int tid) {
+    const std::size_t begin = c * chunk;
+    body(begin, std::min(n, begin + chunk), tid);
+  });
 }
 
 }  // namespace ccdlab

@@ -7,7 +7,7 @@
 namespace ccdlab {
 
 Progress::Progress(std::string label, long total, bool enabled)
-    : label_(std::move(label)), total_(total), enabled_(enabled), start_(std::chrono::steady_clock::now()), last_(start_) {}
+    : label_(std::move(label)), total_(total), enabled_(enabled && stderr_is_terminal()), start_(std::chrono::steady_clock::now()), last_(start_) {}
 
 Progress::~Progress() {
   if (enabled_) std::fprintf(stderr, "\r\033[K");

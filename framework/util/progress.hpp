@@ -8,6 +8,8 @@ namespace ccdlab {
 
 class Progress {
  public:
+  /// Shows nothing unless `enabled` (no --no-progress) and stderr is a terminal: logs and pipes get no
+  /// carriage returns or clear-line codes.
   Progress(std::string label, long total, bool enabled);
   ~Progress();
   Progress(const Progress&) = delete;

@@ -107,10 +107,19 @@ TEST_F(MeshIo, MalformedHeadersAndFormats) {
   write_text(ply, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n");
   EXPECT_EQ(error_of([&] { read_ply(ply); }), ply + ":4: header truncated (no end_header)");
   write_text(ply, "not a ply\n");
-  EXPECT_EQ(error_of([&] { read_ply(ply); }), ply + ":1: not a PLY file (first line must be 'ply')");
+  EXPECT_EQ(error_of([&] { read_ply(ply); }), ply + ":1: not a PLY file (first line must be 'ply', got 'not a ply')");
+  write_text((dir / "x.stl").string(), "solid x\n");
   EXPECT_EQ(error_of([&] { read_mesh((dir / "x.stl").string()); }),
             (dir / "x.stl").string() + ": unknown mesh format '.stl', expected .obj or .ply");
-  EXPECT_EQ(error_of([&] { read_mesh((dir / "absent.ply").string()); }), (dir / "absent.ply").string() + ": cannot open file");
+  EXPECT_EQ(error_of([&] { read_mesh((dir / "absent.ply").string()); }),
+            (dir / "absent.ply").string() + ": cannot open file (no such file)");
+  EXPECT_EQ(error_of([&] { read_mesh(dir.string()); }), dir.string() + ": cannot open file (it is a directory, expected a file)");
+  // A header's counts are claims: checked against the file's size before anything is allocated.
+  write_text(ply, "ply\nformat ascii 1.0\nelement vertex 4000000000000\nproperty float x\nproperty float y\n"
+                  "property float z\nend_header\n0 0 0\n");
+  EXPECT_EQ(error_of([&] { read_ply(ply); }),
+            ply + ": element vertex 4000000000000: the header declares more items than the file can hold (6 bytes after "
+                  "the header, at least 2 per item)");
 }
 
 }  // namespace

@@ -31,15 +31,21 @@ TEST(FrameFiles, MismatchedFramesAreNamed) {
   std::swap(swapped[4], swapped[5]);
   write_ply((dir / "003.ply").string(), g.positions, swapped);
 
-  MeshSequence seq = load_frame_files(expand_frame_pattern((dir / "%03d.ply").string(), 0, 3));
-  EXPECT_EQ(seq.num_frames(), 4);
-  EXPECT_EQ(seq.num_steps(), 3);
+  // Every frame is checked when the sequence is loaded, before any step: the first bad one is named.
+  MeshSequence seq = load_frame_files(expand_frame_pattern((dir / "%03d.ply").string(), 0, 1));
+  EXPECT_EQ(seq.num_frames(), 2);
+  EXPECT_EQ(seq.num_steps(), 1);
   EXPECT_EQ(seq.frame_label(1), "001");
   EXPECT_EQ(seq.frame(1).size(), g.positions.size());
-  EXPECT_EQ(error_of([&] { (void)seq.frame(2); }),
+  EXPECT_EQ(error_of([&] { (void)load_frame_files(expand_frame_pattern((dir / "%03d.ply").string(), 0, 3)); }),
             (dir / "002.ply").string() + ": frame 2 has 15 vertices, expected 16 (as in " + (dir / "000.ply").string() + ")");
-  EXPECT_NE(error_of([&] { (void)seq.frame(3); }).find("003.ply: frame 3: faces differ from"), std::string::npos);
-  EXPECT_NE(error_of([&] { (void)seq.frame(3); }).find("first difference at face 4"), std::string::npos);
+  const std::vector<std::string> swapped_last{(dir / "000.ply").string(), (dir / "001.ply").string(), (dir / "003.ply").string()};
+  const std::string e = error_of([&] { (void)load_frame_files(swapped_last); });
+  EXPECT_NE(e.find("003.ply: frame 2: faces differ from"), std::string::npos) << e;
+  EXPECT_NE(e.find("first difference at face 4"), std::string::npos) << e;
+  std::filesystem::create_directories(dir / "folder.ply");
+  EXPECT_EQ(error_of([&] { (void)load_frame_files({(dir / "000.ply").string(), (dir / "folder.ply").string()}); }),
+            (dir / "folder.ply").string() + ": cannot open file (it is a directory, expected a file)");
 }
 
 TEST(DrapeFoldScene, SizeBodiesAndDeterminism) {
