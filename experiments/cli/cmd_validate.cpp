@@ -45,6 +45,8 @@ nlohmann::json score_json(const SetScore& s) {
 }  // namespace
 
 int validate_command(const ValidateOptions& o) {
+  if (o.repeat < 1 || o.repeat > 1000000) fail("--repeat: expected an integer from 1 to 1000000, got {}", o.repeat);
+  if (o.failures < 0) fail("--failures: expected an integer >= 0, got {}", o.failures);
   const Registries reg = builtin_registries();
   std::vector<StrategyChoice> choices;
   for (const auto& spec : o.testers) choices.push_back(parse_tester(spec, reg.testers));

@@ -101,10 +101,26 @@ void emit(YAML::Emitter& out, const nlohmann::json& j) {
 
 }  // namespace
 
+ExperimentConfig load_experiment_checked(const std::string& path, const std::vector<std::string>& overrides,
+                                         const Registries& reg);
+
 ExperimentConfig load_experiment(const std::string& path, const std::vector<std::string>& overrides,
                                  const Registries& reg) {
+  try {
+    return load_experiment_checked(path, overrides, reg);
+  } catch (const YAML::Exception& e) {
+    // Whatever yaml-cpp still refuses (a node of an unexpected kind deep inside) is the file's fault, located.
+    fail("{}:{}: {}", path, e.mark.line + 1, e.msg);
+  }
+}
+
+ExperimentConfig load_experiment_checked(const std::string& path, const std::vector<std::string>& overrides,
+                                         const Registries& reg) {
   YAML::Node root = load_yaml_file(path);
   if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  if (!root.IsMap())
+    fail("{}:{}: expected a mapping of config keys (name: …, scene: …), got {}", path, root.Mark().line + 1,
+         root.IsSequence() ? "a list" : "a single value");
   std::set<std::string> overridden;
   for (const auto& o : overrides) overridden.insert(apply_override(root, o));
   YamlReader r(path, overridden);

@@ -26,9 +26,9 @@ std::string extension(const std::string& path) {
   return ext;
 }
 
-void check_finite(const std::string& where, Index vertex, const Vec3& p) {
-  if (!p.allFinite())
-    fail("{}: vertex {}: non-finite coordinate ({} {} {})", where, vertex, p.x(), p.y(), p.z());
+/// `where` names the vertex ("file:line: vertex 4" or "file:line: element vertex 4").
+void check_finite(const std::string& where, const Vec3& p) {
+  if (!p.allFinite()) fail("{}: non-finite coordinate ({} {} {})", where, p.x(), p.y(), p.z());
 }
 
 /// Appends a polygon, fan-triangulated, after converting 1-based/negative OBJ or 0-based PLY indices.
@@ -96,6 +96,7 @@ MeshData read_mesh(const std::string& path) {
 MeshData read_obj(const std::string& path) { return parse_obj(read_file(path), path); }
 
 MeshData parse_obj(std::string text, const std::string& path) {
+  if (text.empty()) fail("{}: empty file", path);
   strip_utf8_bom(text);
   MeshData mesh;
   std::vector<std::pair<std::size_t, std::vector<long long>>> polygons;  // (line, 0-based indices)
@@ -113,7 +114,7 @@ MeshData parse_obj(std::string text, const std::string& path) {
     if (tok[0] == "v") {
       if (tok.size() < 4) fail("{}: vertex: expected 3 coordinates, got {}", where, tok.size() - 1);
       Vec3 p(parse_double(where, tok[1], "x"), parse_double(where, tok[2], "y"), parse_double(where, tok[3], "z"));
-      check_finite(where, Index(mesh.positions.size()), p);
+      check_finite(fmt::format("{}: vertex {}", where, mesh.positions.size()), p);
       mesh.positions.push_back(p);
     } else if (tok[0] == "f") {
       std::vector<long long> poly;
@@ -250,6 +251,7 @@ class AsciiCursor {
 MeshData read_ply(const std::string& path) { return parse_ply(read_file(path), path); }
 
 MeshData parse_ply(std::string data, const std::string& path) {
+  if (data.empty()) fail("{}: empty file", path);
   strip_utf8_bom(data);
   // --- header ---
   std::size_t pos = 0, line_no = 0;
@@ -366,7 +368,7 @@ MeshData parse_ply(std::string data, const std::string& path) {
       }
       std::string where = ascii ? fmt::format("{}:{}: element {} {}", path, line_of_item, el.name, k)
                                 : fmt::format("{}: element {} {}", path, el.name, k);
-      if (is_vertex) check_finite(where, Index(k), mesh.positions[k]);
+      if (is_vertex) check_finite(where, mesh.positions[k]);
       if (is_face) add_polygon(where, poly, mesh.faces, Index(mesh.positions.size()));
     }
   }

@@ -24,12 +24,15 @@ def ply_header(fmt="ascii", nv=len(V), nf=len(F), vtype="float", itype="int", ct
             f"property {vtype} z\nelement face {nf}\nproperty list {ctype} {itype} vertex_indices\nend_header\n").encode()
 
 
-def ply_ascii(vs=V, fs=F, **kw):
+F0 = [tuple(i - 1 for i in f) for f in F]  # 0-based for PLY
+
+
+def ply_ascii(vs=V, fs=F0, **kw):
     body = "".join(f"{x} {y} {z}\n" for x, y, z in vs) + "".join(f"{len(f)} " + " ".join(str(i) for i in f) + "\n" for f in fs)
     return ply_header(nv=kw.pop("nv", len(vs)), nf=kw.pop("nf", len(fs)), **kw) + body.encode()
 
 
-def ply_binary(vs=V, fs=F, nv=None, nf=None, tail=b""):
+def ply_binary(vs=V, fs=F0, nv=None, nf=None, tail=b""):
     out = ply_header("binary_little_endian", len(vs) if nv is None else nv, len(fs) if nf is None else nf)
     for v in vs:
         out += struct.pack("<3f", *v)
@@ -38,7 +41,6 @@ def ply_binary(vs=V, fs=F, nv=None, nf=None, tail=b""):
     return out + tail
 
 
-F0 = [tuple(i - 1 for i in f) for f in F]  # 0-based for PLY
 rng = random.Random(8)
 files = {
     # OBJ
