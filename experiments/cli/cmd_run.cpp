@@ -9,6 +9,7 @@
 #include "experiments/cli/report.hpp"
 #include "framework/util/error.hpp"
 #include "framework/util/files.hpp"
+#include "framework/util/memory.hpp"
 #include "framework/util/progress.hpp"
 #include "strategies/registry.hpp"
 
@@ -66,7 +67,7 @@ int run_command(const RunOptions& o) {
   Progress progress("ccdlab run", scene.num_steps(), o.progress && !table_on_terminal);
   std::vector<double> total_ms, build_ms, cones_ms, swept_ms, refit_ms, traverse_ms, narrow_ms, orphan_ms;
   std::uint64_t hash = contact_set_hash({}), vf = 0, ee = 0, bv_tests = 0, candidates = 0, vf_tests = 0, ee_tests = 0, orphan_pairs = 0, orphan_tests = 0,
-                tests_filtered = 0, tests_fallback = 0;
+                tests_filtered = 0, tests_fallback = 0, peak_rss = 0, streamed_steps = 0;
   Positions x_t0 = scene.frame(0);
   for (int s = 0; s < scene.num_steps(); ++s) {
     Positions x_t1 = scene.frame(s + 1);
@@ -83,6 +84,8 @@ int run_command(const RunOptions& o) {
     orphan_tests += r.counters.orphan_tests;
     tests_filtered += r.counters.tests_filtered;
     tests_fallback += r.counters.tests_fallback;
+    peak_rss = std::max(peak_rss, r.memory.peak_rss_bytes);
+    streamed_steps += r.memory.slices > 0;
     total_ms.push_back(r.timings.total_ms);
     build_ms.push_back(r.timings.build_ms);
     cones_ms.push_back(r.timings.cones_ms);
@@ -128,6 +131,8 @@ int run_command(const RunOptions& o) {
                     {"orphan_pairs", orphan_pairs}, {"orphan_tests", orphan_tests}, {"tests_filtered", tests_filtered},
                     {"tests_fallback", tests_fallback}}},
       {"hash", fmt::format("{:016x}", hash)},
+      {"memory", {{"peak_rss_mb", double(peak_rss) / (1 << 20)}, {"limit_mb", double(config.memory_limit_bytes) / (1 << 20)},
+                  {"streamed_steps", streamed_steps}}},
       {"config", config_json},
       {"git_revision", rev},
       {"results", config.output.dir}};
@@ -142,9 +147,11 @@ int run_command(const RunOptions& o) {
   } else {
     const std::string cones = config.normal_cones ? fmt::format(", normal cones {:.2f}", median(cones_ms)) : "";
     fmt::print("\n{} steps: median {:.2f} ms/step (swept BV {:.2f}, refit {:.2f}{}, traverse {:.2f}, narrow {:.2f}, "
-               "orphans {:.2f}); contacts vf={} ee={}; hash {:016x}\nresults in {}/\n",
+               "orphans {:.2f}); contacts vf={} ee={}; hash {:016x}\npeak resident memory {} (limit {}{})\nresults in {}/\n",
                scene.num_steps(), median(total_ms), median(swept_ms), median(refit_ms), cones, median(traverse_ms),
-               median(narrow_ms), median(orphan_ms), vf, ee, hash, config.output.dir);
+               median(narrow_ms), median(orphan_ms), vf, ee, hash, format_bytes(peak_rss),
+               config.memory_limit_bytes ? format_bytes(config.memory_limit_bytes) : "none",
+               streamed_steps ? fmt::format("; {} steps streamed to stay under it", streamed_steps) : "", config.output.dir);
   }
   return 0;
 }

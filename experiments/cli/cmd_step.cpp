@@ -8,6 +8,7 @@
 #include "framework/mesh/mesh_io.hpp"
 #include "framework/util/error.hpp"
 #include "framework/util/files.hpp"
+#include "framework/util/memory.hpp"
 #include "strategies/registry.hpp"
 
 namespace ccdlab::cli {
@@ -29,6 +30,7 @@ int step_command(const StepOptions& o) {
   PipelineStrategies s;
   s.k = o.k;
   s.threads = o.threads;
+  s.memory_limit = parse_memory_size(o.memory_limit, "--memory-limit");
   s.builder = builder_registry().make(choose(builder_registry(), "hierarchy", o.hierarchy));
   s.scheduler = scheduler_registry().make(choose(scheduler_registry(), "scheduler", o.scheduler));
   s.tester = tester_registry().make(parse_tester(o.tester, tester_registry()));
@@ -61,7 +63,9 @@ int step_command(const StepOptions& o) {
     j["triangles"] = mesh.num_faces();
     j["vertices"] = mesh.num_vertices();
     j["orphans"] = {{"vf", pipeline.orphans().vf.size()}, {"ee", pipeline.orphans().ee.size()}};
-    j["config"] = {{"k", o.k}, {"hierarchy", o.hierarchy}, {"scheduler", o.scheduler}, {"threads", o.threads}, {"tester", o.tester}};
+    j["memory"]["estimate_mb"] =
+        double(estimate_pipeline_bytes(mesh, o.k, pipeline.orphans().vf.size() + pipeline.orphans().ee.size())) / (1 << 20);
+    j["config"] = {{"k", o.k}, {"hierarchy", o.hierarchy}, {"scheduler", o.scheduler}, {"threads", o.threads}, {"tester", o.tester}, {"memory_limit", o.memory_limit}};
     fmt::print("{}\n", j.dump(2));
   } else {
     fmt::print("ccdlab step {} -> {}: {} triangles, k={} hierarchy={} scheduler={} tester={}\n\n", o.mesh_t0, o.mesh_t1,

@@ -27,8 +27,9 @@ namespace {
 std::string label(const StrategyChoice& c, const TesterRegistry& registry) {
   std::string out = c.name;
   const auto defaults = registry.find(c.name)->defaults().all();
-  for (const auto& [k, v] : c.params.all()) {
-    if (defaults.at(k) == v) continue;
+  for (const auto& [key, v] : c.params.all()) {
+    if (defaults.at(key) == v) continue;
+    const std::string& k = key;  // a structured binding cannot be captured by clang 14
     std::visit([&](const auto& x) { out += fmt::format("{}{}={}", out == c.name ? ":" : ",", k, x); }, v);
   }
   return out;

@@ -21,6 +21,7 @@ struct StepOptions {
   std::string hierarchy = "median";
   std::string tester = "float";
   int threads = 1;
+  std::string memory_limit = "80%";
   std::string contacts_csv;
   bool json = false;
 };

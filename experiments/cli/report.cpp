@@ -35,6 +35,10 @@ nlohmann::json step_json(const StepResult& r) {
             {"rebuilds", r.traversal.rebuilds},
             {"cone_culled", r.traversal.cone_culled},
             {"contour_edges", r.traversal.contour_edges}}},
+          {"memory",
+           {{"peak_rss_mb", double(r.memory.peak_rss_bytes) / (1 << 20)},
+            {"limit_mb", double(r.memory.limit_bytes) / (1 << 20)},
+            {"streamed_slices", r.memory.slices}}},
           {"ms",
            {{"total", t.total_ms},
             {"build", t.build_ms},
@@ -49,16 +53,17 @@ nlohmann::json step_json(const StepResult& r) {
 std::string csv_header() {
   return "bv_tests,candidate_pairs,vf_pairs,ee_pairs,orphan_vf,orphan_ee,vf_tests,ee_tests,orphan_tests,tests_filtered,"
          "tests_fallback,contacts_vf,contacts_ee,"
-         "build_ms,swept_bv_ms,refit_ms,cones_ms,traverse_ms,narrow_ms,orphan_ms,total_ms,hash";
+         "build_ms,swept_bv_ms,refit_ms,cones_ms,traverse_ms,narrow_ms,orphan_ms,total_ms,peak_rss_mb,streamed_slices,hash";
 }
 
 std::string csv_row(const StepResult& r, std::uint64_t step_hash) {
   const StepCounters& c = r.counters;
   const StepTimings& t = r.timings;
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:016x}", c.bv_tests,
-                     c.candidate_pairs, c.vf_pairs, c.ee_pairs, c.orphan_vf, c.orphan_ee, c.vf_tests, c.ee_tests,
-                     c.orphan_tests, c.tests_filtered, c.tests_fallback, c.contacts_vf, c.contacts_ee, t.build_ms, t.swept_bv_ms, t.refit_ms, t.cones_ms, t.traverse_ms, t.narrow_ms,
-                     t.orphan_ms, t.total_ms, step_hash);
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.1f},{},{:016x}",
+                     c.bv_tests, c.candidate_pairs, c.vf_pairs, c.ee_pairs, c.orphan_vf, c.orphan_ee, c.vf_tests,
+                     c.ee_tests, c.orphan_tests, c.tests_filtered, c.tests_fallback, c.contacts_vf, c.contacts_ee,
+                     t.build_ms, t.swept_bv_ms, t.refit_ms, t.cones_ms, t.traverse_ms, t.narrow_ms, t.orphan_ms,
+                     t.total_ms, double(r.memory.peak_rss_bytes) / (1 << 20), r.memory.slices, step_hash);
 }
 
 std::string contact_row(const Contact& c) {

@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "framework/config/yaml_reader.hpp"
+#include "framework/util/memory.hpp"
 #include "framework/util/parallel.hpp"
 
 namespace ccdlab {
@@ -70,7 +71,10 @@ SceneConfig read_scene(const YamlReader& r, const YAML::Node& node, const std::s
 nlohmann::json params_json(const StrategyChoice& c) {
   nlohmann::json j;
   j["name"] = c.name;
-  for (const auto& [k, v] : c.params.all()) std::visit([&](const auto& x) { j[k] = x; }, v);
+  for (const auto& [key, v] : c.params.all()) {
+    const std::string& k = key;  // a structured binding cannot be captured by clang 14
+    std::visit([&](const auto& x) { j[k] = x; }, v);
+  }
   return j;
 }
 
@@ -125,7 +129,7 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
   for (const auto& o : overrides) overridden.insert(apply_override(root, o));
   YamlReader r(path, overridden);
   r.check_keys(root, "", {"name", "scene", "bv", "hierarchy", "restructure", "normal_cones", "scheduler", "threads", "tester",
-                   "output"});
+                   "memory_limit", "output"});
 
   ExperimentConfig c;
   c.source = path;
@@ -156,6 +160,13 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
   }
   if (root["normal_cones"]) c.normal_cones = r.boolean(root["normal_cones"], "normal_cones");
   if (root["threads"]) c.threads = int(r.integer(root["threads"], "threads", 1, kMaxThreads));
+  if (root["memory_limit"]) c.memory_limit = r.string(root["memory_limit"], "memory_limit");
+  try {
+    c.memory_limit_bytes = parse_memory_size(c.memory_limit, "memory_limit");
+  } catch (const Error&) {
+    if (!root["memory_limit"]) throw;
+    r.error(root["memory_limit"], "memory_limit", "a size like 8GiB, 512MiB or 60% (of this machine's memory), or none");
+  }
   c.output.dir = "results/" + c.name;
   if (const YAML::Node o = root["output"]) {
     r.check_keys(o, "output", {"dir", "csv", "jsonl", "contacts"});
@@ -184,6 +195,8 @@ nlohmann::json to_json(const ExperimentConfig& c) {
   j["normal_cones"] = c.normal_cones;
   j["scheduler"] = params_json(c.scheduler);
   j["threads"] = c.threads;
+  j["memory_limit"] = c.memory_limit;
+  j["memory_limit_bytes"] = c.memory_limit_bytes;
   j["tester"] = params_json(c.tester);
   j["output"] = {{"dir", c.output.dir}, {"csv", c.output.csv}, {"jsonl", c.output.jsonl}, {"contacts", c.output.contacts}};
   return j;
@@ -206,6 +219,7 @@ PipelineStrategies make_strategies(const ExperimentConfig& c, const Registries& 
   s.threads = c.threads;
   s.restructure_threshold = c.restructure_threshold;
   s.normal_cones = c.normal_cones;
+  s.memory_limit = c.memory_limit_bytes;
   s.builder = reg.builders.make(c.hierarchy);
   s.scheduler = reg.schedulers.make(c.scheduler);
   s.tester = reg.testers.make(c.tester);

@@ -58,6 +58,10 @@ struct ExperimentConfig {
   StrategyChoice tester{"float", {}};
   double restructure_threshold = 0;  ///< restructure: {threshold: …}; 0 = off
   bool normal_cones = false;         ///< normal_cones: true — continuous normal-cone culling of self tests
+  /// memory_limit: resident memory a step may use ("8GiB", "60%", "none"); above the predicted need the step
+  /// streams its candidates (framework/pipeline/memory_budget.hpp). Default: 80% of this machine's memory.
+  std::string memory_limit = "80%";
+  std::uint64_t memory_limit_bytes = 0;  ///< resolved from memory_limit on this machine (0 = none)
   OutputConfig output;
 };
 

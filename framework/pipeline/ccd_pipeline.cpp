@@ -2,7 +2,9 @@
 
 #include <chrono>
 
+#include "framework/traversal/bvtt_tasks.hpp"
 #include "framework/util/error.hpp"
+#include "framework/util/memory.hpp"
 
 namespace ccdlab {
 namespace {
@@ -46,13 +48,27 @@ void compute_face_bvs(const TriMesh& mesh, const Positions& x0, const Positions&
       out);
 }
 
+std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, std::size_t orphan_pairs) {
+  const std::uint64_t v = std::uint64_t(mesh.num_vertices()), e = std::uint64_t(mesh.num_edges()),
+                      f = std::uint64_t(mesh.num_faces());
+  const std::uint64_t bv = std::visit([](const auto& vec) { return std::uint64_t(sizeof(vec[0])); }, make_bvs(k));
+  const std::uint64_t bvh = 2 * f * (sizeof(BvhNode) + sizeof(Index) + bv);  // nodes, leaf counts, node volumes
+  const std::uint64_t face_bvs = f * bv;
+  const std::uint64_t feature_boxes = (v + e + f) * sizeof(Box3);
+  const std::uint64_t ownership = (v + e) * sizeof(Index) + f;
+  const std::uint64_t orphans = std::uint64_t(orphan_pairs) * sizeof(EdgeEdgePair);
+  const std::uint64_t frames = 2 * v * sizeof(Vec3);
+  return bvh + face_bvs + feature_boxes + ownership + orphans + frames;
+}
+
 CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, PipelineStrategies strategies)
     : mesh_(mesh),
       rules_(mesh, std::move(bodies)),
       strategies_(std::move(strategies)),
       owners_(assign_owners(mesh)),
       narrow_(mesh_, owners_, *strategies_.tester),
-      face_bvs_(make_bvs(strategies_.k)) {
+      face_bvs_(make_bvs(strategies_.k)),
+      budget_(strategies_.memory_limit, strategies_.stream_slices) {
   if (strategies_.threads < 1 || strategies_.threads > kMaxThreads)
     fail("threads: expected an integer from 1 to {}, got {}", kMaxThreads, strategies_.threads);
   if (strategies_.normal_cones && strategies_.tester->thickness() > 0)
@@ -62,6 +78,15 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
     int b = rules_.body_of_face(f);
     return rules_.bodies_interact(b, b);
   });
+  if (const std::uint64_t limit = strategies_.memory_limit; limit > 0) {
+    const std::uint64_t resident = current_rss_bytes(),
+                        need = estimate_pipeline_bytes(mesh_, strategies_.k, orphans_.vf.size() + orphans_.ee.size());
+    if (resident + need > limit)
+      fail("memory_limit {}: this run needs about {} before its first step ({} resident now with the scene, {} more "
+           "for the BVH, feature boxes and orphan set of {} triangles); lower the scene's size or raise memory_limit",
+           format_bytes(limit), format_bytes(resident + need), format_bytes(resident), format_bytes(need),
+           mesh_.num_faces());
+  }
   const auto& bl = rules_.bodies();
   bodies_.resize(bl.size());
   for (std::size_t b = 0; b < bl.size(); ++b) {
@@ -246,6 +271,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   StepCounters& c = result.counters;
   StepTimings& tm = result.timings;
   const auto t_start = Clock::now();
+  reset_peak_rss();  // this step's peak, not the run's
 
   auto t = Clock::now();
   if (!built_) {
@@ -305,28 +331,16 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   }
 
   t = Clock::now();
-  candidates_.clear();
-  for (const TraversalPass& pass : passes_) strategies_.scheduler->collect(pass, candidates_, result.traces);
-  c.bv_tests = candidates_.bv_tests;
-  c.candidate_pairs = candidates_.pairs.size();
-  {
-    const std::uint64_t culled = result.traversal.cone_culled, edges = result.traversal.contour_edges;
-    result.traversal = candidates_.stats;
-    result.traversal.bv_tests = candidates_.bv_tests;
-    result.traversal.cone_culled = culled;
-    result.traversal.contour_edges = edges;
-  }
-  tm.traverse_ms = ms_since(t);
-
-  t = Clock::now();
   PhaseTrace boxes{"feature_boxes", Distribution::dynamic, 0, {}, {}};
   narrow_.begin_step(x_t0, x_t1, threads, &boxes);  // swept boxes of every vertex, edge, face
   result.traces.push_back(std::move(boxes));
-  test_in_parallel(candidates_.pairs, kCandidateChunk, "narrow", result,
-                   [this](const FacePair& p, std::vector<Contact>& out, StepCounters& lc, StepResult* rec) {
-                     narrow_.test_face_pair(p.a, p.b, out, lc, rec);
-                   });
   tm.narrow_ms = ms_since(t);
+
+  const MemoryPlan plan = budget_.plan(budget_.limit() > 0 ? current_rss_bytes() : 0, std::size_t(mesh_.num_faces()));
+  traverse_and_test(plan, result);
+  budget_.record(c.candidate_pairs, result.traversal.front_bytes);
+  result.memory.limit_bytes = budget_.limit();
+  result.memory.slices = plan.streamed ? plan.slices : 0;
 
   t = Clock::now();
   const std::uint64_t vf_before = c.vf_pairs, ee_before = c.ee_pairs, tests_before = c.vf_tests + c.ee_tests;
@@ -361,7 +375,62 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   sort_contacts(result.contacts);
   result.traces.push_back(PhaseTrace{"sort_contacts", Distribution::dynamic, ms_since(t), {}, {}});  // serial
   tm.total_ms = ms_since(t_start);
+  result.memory.peak_rss_bytes = peak_rss_bytes();
   return result;
+}
+
+void CcdPipeline::test_candidates(StepResult& result) {
+  const auto t = Clock::now();
+  result.counters.candidate_pairs += candidates_.pairs.size();
+  test_in_parallel(candidates_.pairs, kCandidateChunk, "narrow", result,
+                   [this](const FacePair& p, std::vector<Contact>& out, StepCounters& lc, StepResult* rec) {
+                     narrow_.test_face_pair(p.a, p.b, out, lc, rec);
+                   });
+  result.timings.narrow_ms += ms_since(t);
+}
+
+void CcdPipeline::traverse_and_test(const MemoryPlan& plan, StepResult& result) {
+  candidates_.clear();
+  double traverse_ms = 0;
+  if (!plan.streamed) {
+    const auto t = Clock::now();
+    for (const TraversalPass& pass : passes_) strategies_.scheduler->collect(pass, candidates_, result.traces);
+    traverse_ms = ms_since(t);
+    test_candidates(result);
+  } else {
+    // Each pass cut into slices (the BVTT nodes of one breadth-first level, BV tests counted, leaf pairs met
+    // on the way kept as candidates); each slice traversed on its own (own pass id, state released after), and
+    // the candidates tested whenever `flush_pairs` are buffered.
+    const int slice_ids = int(std::min<std::size_t>(plan.slices * 4 + 1, 1u << 20));
+    for (const TraversalPass& pass : passes_) {
+      if (pass.bvh_a->nodes.empty() || pass.bvh_b->nodes.empty()) continue;
+      auto t = Clock::now();
+      std::vector<BvttNode> slices;
+      with_bvtt_view(pass, [&](const auto& view) { slices = expand_breadth_first(view, plan.slices, candidates_); });
+      traverse_ms += ms_since(t);
+      for (std::size_t s = 0; s < slices.size(); ++s) {
+        TraversalPass slice = pass;
+        slice.root = slices[s];
+        slice.id = int(passes_.size()) + pass.id * slice_ids + int(s % std::size_t(slice_ids));
+        t = Clock::now();
+        strategies_.scheduler->collect(slice, candidates_, result.traces);
+        strategies_.scheduler->release(slice.id);
+        traverse_ms += ms_since(t);
+        if (candidates_.pairs.size() >= plan.flush_pairs) {
+          test_candidates(result);
+          std::vector<FacePair>().swap(candidates_.pairs);  // free, not just clear: the point is the memory
+        }
+      }
+    }
+    test_candidates(result);
+  }
+  result.counters.bv_tests = candidates_.bv_tests;
+  const std::uint64_t culled = result.traversal.cone_culled, edges = result.traversal.contour_edges;
+  result.traversal = candidates_.stats;
+  result.traversal.bv_tests = candidates_.bv_tests;
+  result.traversal.cone_culled = culled;
+  result.traversal.contour_edges = edges;
+  result.timings.traverse_ms = traverse_ms;
 }
 
 std::size_t CcdPipeline::memory_bytes() const {

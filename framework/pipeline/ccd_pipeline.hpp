@@ -9,6 +9,7 @@
 
 #include "framework/hierarchy/bvh.hpp"
 #include "framework/pipeline/bodies.hpp"
+#include "framework/pipeline/memory_budget.hpp"
 #include "framework/pipeline/step_result.hpp"
 #include "framework/primitive/feature_pairs.hpp"
 #include "framework/primitive/narrow_phase.hpp"
@@ -26,6 +27,12 @@ struct PipelineStrategies {
   double restructure_threshold = 0;
   /// Continuous normal-cone culling of self tests (framework/traversal/normal_cones.hpp); thickness 0 only.
   bool normal_cones = false;
+  /// Bytes the process may hold resident during a step (0 = no limit): above the predicted need, a step streams
+  /// its candidates to the narrow phase slice by slice (framework/pipeline/memory_budget.hpp).
+  std::uint64_t memory_limit = 0;
+  /// Stream every step in (about) this many slices per pass, whatever the memory: to test streaming and to
+  /// measure its cost. 0 = only when the memory limit asks for it.
+  std::size_t stream_slices = 0;
   std::unique_ptr<HierarchyBuilder> builder;
   std::unique_ptr<TraversalScheduler> scheduler;
   std::unique_ptr<PrimitiveTester> tester;
@@ -73,6 +80,10 @@ class CcdPipeline {
   std::uint64_t restructure(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
   void build_hierarchies(const Positions& x_t0, const Positions& x_t1);
   void refit_body(BodyState& body, PhaseTrace& trace);
+  /// BVTT traversal of every pass and the narrow phase of its candidates: at once, or slice by slice when the
+  /// memory plan streams.
+  void traverse_and_test(const MemoryPlan& plan, StepResult& result);
+  void test_candidates(StepResult& result);
   template <class Pairs, class TestOne>
   void test_in_parallel(const Pairs& pairs, std::size_t chunk, const char* phase, StepResult& result, TestOne&& test_one);
 
@@ -87,9 +98,15 @@ class CcdPipeline {
   AnyBvs face_bvs_;
   std::vector<Index> face_patch_;  ///< normal cones: the skipped patch (BVH node) holding each face this step, or −1
   TraversalOutput candidates_;
+  MemoryBudget budget_;
   bool built_ = false;
   bool record_tested_ = false;
 };
+
+/// Bytes a pipeline over `mesh` will add before its first traversal: the BVHs and their volumes, the swept face
+/// volumes, the feature boxes, the ownership, the orphan set and the two frames of a step. Checked against
+/// memory_limit when a pipeline is made, so that a run too large for the machine is refused before it starts.
+std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, std::size_t orphan_pairs);
 
 /// An AnyBvs holding an empty vector of KDop<k>; throws Error unless k ∈ {6, 14, 18, 26}.
 AnyBvs make_bvs(int k);

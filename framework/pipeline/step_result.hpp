@@ -40,11 +40,19 @@ struct StepTimings {
   double total_ms = 0;      ///< all phases, build included
 };
 
+/// Resident memory of the step (framework/util/memory.hpp) and whether it had to stream to stay under the limit.
+struct StepMemory {
+  std::uint64_t peak_rss_bytes = 0;  ///< the process's peak resident memory during the step (0 = unknown)
+  std::uint64_t limit_bytes = 0;     ///< memory_limit (0 = none)
+  std::uint64_t slices = 0;          ///< BVTT slices per pass when streamed, 0 when not
+};
+
 struct StepResult {
   std::vector<Contact> contacts;  ///< sorted by feature identity
   StepCounters counters;
   StepTimings timings;
   TraversalStats traversal;        ///< the scheduler's counters (front size, serial time, …)
+  StepMemory memory;
   std::vector<PhaseTrace> traces;  ///< per-phase task costs, for the schedule simulator
   /// Filled only when the pipeline records tested pairs (tests of the ownership rule).
   std::vector<VertexFacePair> tested_vf;

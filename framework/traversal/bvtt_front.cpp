@@ -2,8 +2,8 @@
 
 namespace ccdlab {
 
-std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b, bool self, double granularity,
-                                     double min_pairs) {
+std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b, bool self, BvttNode root,
+                                     double granularity, double min_pairs) {
   std::vector<FrontNode> front;
   if (a.nodes.empty() || b.nodes.empty()) return front;
   const double la = a.num_leaves(), lb = b.num_leaves();
@@ -26,12 +26,13 @@ std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b,
       }
     }
   };
-  if (!self) {
-    split_into_front({0, 0});
+  if (!self || root.a != root.b) {
+    split_into_front(root);
     return front;
   }
-  for (const BvhNode& n : a.nodes)
-    if (!n.is_leaf()) split_into_front({n.left, n.right});
+  // A self node: the pair of children of every inner node below it.
+  for (Index i = root.a; i < a.subtree_end(root.a); ++i)
+    if (const BvhNode& n = a.nodes[i]; !n.is_leaf()) split_into_front({n.left, n.right});
   return front;
 }
 

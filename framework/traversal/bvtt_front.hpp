@@ -34,13 +34,13 @@ struct FrontCounters {
   std::uint64_t bv_tests = 0, visited = 0, sprouted = 0, pruned = 0;
 };
 
-/// The front a rebuild starts from: (A.left, A.right) for every inner node A of a self pass, (root_a, root_b)
-/// for a pair pass — each split (without a BV test; its children cover the same leaf pairs) until it covers at
-/// most 1/`granularity` of the pass's leaf pairs (and no fewer than `min_pairs`), so the first step's sprouting is
-/// spread over many balanced
-/// tasks. Depth-first, left first: siblings stay adjacent for pruning. All marked fresh.
-std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b, bool self, double granularity = 512,
-                                     double min_pairs = 4096);
+/// The front a rebuild starts from, covering the BVTT below `root` (the whole BVTT, or one slice of a
+/// memory-bounded step): (A.left, A.right) for every inner node A under a self node (r, r), the node itself
+/// otherwise — each split (without a BV test; its children cover the same leaf pairs) until it covers at most
+/// 1/`granularity` of the pass's leaf pairs (and no fewer than `min_pairs`), so the first step's sprouting is
+/// spread over many balanced tasks. Depth-first, left first: siblings stay adjacent for pruning. All fresh.
+std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b, bool self, BvttNode root = {0, 0},
+                                     double granularity = 512, double min_pairs = 4096);
 
 /// Processes front nodes [begin, end): appends their replacements to `next` and candidates to `pairs`.
 template <class BV>

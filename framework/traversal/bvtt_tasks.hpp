@@ -13,10 +13,11 @@
 namespace ccdlab {
 
 template <class BV>
-std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t want, TraversalOutput& out) {
+std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t want, TraversalOutput& out,
+                                           BvttNode root = {0, 0}) {
   const auto& na = v.bvh_a->nodes;
   const auto& nb = v.bvh_b->nodes;
-  std::vector<BvttNode> level{{0, 0}}, next;
+  std::vector<BvttNode> level{root}, next;
   while (!level.empty() && level.size() < want) {
     next.clear();
     bool opened = false;
@@ -88,7 +89,7 @@ inline void split_and_run(const TraversalPass& pass, int tasks_per_thread, Distr
     PhaseTrace trace{phase, dist, 0, {}, {}};
     const auto t0 = std::chrono::steady_clock::now();
     const std::size_t want = std::size_t(tasks_per_thread) * std::size_t(pass.threads);
-    std::vector<BvttNode> tasks = expand_breadth_first(view, want, out);
+    std::vector<BvttNode> tasks = expand_breadth_first(view, want, out, pass.root);
     const double serial = ms_between(t0, std::chrono::steady_clock::now());
     trace.serial_ms += serial;
     out.stats.serial_ms += serial;

@@ -30,6 +30,9 @@ struct TraversalPass {
   bool self = true;
   int threads = 1;  ///< OpenMP threads the scheduler may use
   const std::vector<Index>* skip_root = nullptr;  ///< normal-cone culling of self tests (self passes), or none
+  /// Where the traversal starts: the BVTT root, or one slice of it when a memory-bounded step streams its
+  /// candidates to the narrow phase slice by slice (CcdPipeline). A slice has its own `id`.
+  BvttNode root{0, 0};
 };
 
 /// Calls f(BvttView<BV>) with the pass's volumes at their static type: the one place a scheduler dispatches on K.
@@ -52,6 +55,9 @@ class TraversalScheduler {
   /// Appends the candidate face pairs of the pass to out (order unspecified), counts BV tests in out.bv_tests
   /// and its other work in out.stats, and appends the trace of its parallel part to `traces`.
   virtual void collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) = 0;
+  /// Drops whatever state was kept for pass `id` across steps (a BVTT front): memory-bounded steps release
+  /// each slice's state once its candidates are tested. Stateless schedulers keep nothing.
+  virtual void release(int /*pass_id*/) {}
 };
 
 }  // namespace ccdlab

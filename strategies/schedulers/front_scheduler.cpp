@@ -24,7 +24,7 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
   const std::uint64_t version = pass.bvh_a->version + (pass.self ? 0 : pass.bvh_b->version);
   if (front.pieces.empty() || grown || due || version != front.bvh_version) {
     front.bvh_version = version;
-    front.pieces.assign(1, initial_front(*pass.bvh_a, *pass.bvh_b, pass.self));
+    front.pieces.assign(1, initial_front(*pass.bvh_a, *pass.bvh_b, pass.self, pass.root));
     front.steps_since_rebuild = 0;
     front.size_after_rebuild = 0;
     ++out.stats.rebuilds;
@@ -88,6 +88,8 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
   out.stats.serial_ms += trace.serial_ms;
   traces.push_back(std::move(trace));
 }
+
+void FrontScheduler::release(int pass_id) { fronts_.erase(pass_id); }
 
 std::vector<FrontNode> FrontScheduler::front(int pass_id) const {
   std::vector<FrontNode> all;

@@ -25,6 +25,7 @@ class FrontScheduler final : public TraversalScheduler {
   explicit FrontScheduler(Params p) : params_(p) {}
   [[nodiscard]] std::string_view name() const override { return "front"; }
   void collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) override;
+  void release(int pass_id) override;
   /// The current front of a pass, concatenated (empty before its first step) — for tests and reports.
   [[nodiscard]] std::vector<FrontNode> front(int pass_id) const;
 

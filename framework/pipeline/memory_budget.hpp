@@ -1,0 +1,46 @@
+#pragma once
+// The memory budget of one CCD step (config `memory_limit`). The persistent data (mesh, BVH, feature boxes,
+// ownership, orphan set) is resident before the traversal starts; what a step adds on top — candidate face
+// pairs, their thread-local copies, a BVTT front — grows with the contact density and is the paper's admitted
+// memory risk. When the predicted transient memory does not fit under the limit, the step streams: each
+// traversal pass is cut into BVTT slices, and the candidates are tested (and freed) whenever their buffer
+// reaches the budget, so the transient part stays bounded whatever the scene does. Same contacts either way:
+// the slices partition the BVTT, and contacts are sorted at the end of the step.
+#include <cstddef>
+#include <cstdint>
+
+namespace ccdlab {
+
+struct MemoryPlan {
+  bool streamed = false;
+  std::size_t slices = 1;           ///< BVTT slices per traversal pass (1 = the whole pass at once)
+  std::size_t flush_pairs = 0;      ///< test and free the candidates when this many are buffered (0 = never)
+  std::uint64_t budget_bytes = 0;   ///< memory_limit − resident memory at the start of the traversal
+  std::uint64_t predicted_bytes = 0;
+};
+
+class MemoryBudget {
+ public:
+  /// Bytes one buffered candidate face pair costs: the pair in a thread's buffer and again in the merged list.
+  static constexpr std::uint64_t kBytesPerCandidate = 2 * 8;
+  /// First-step guess of the candidates per triangle, before anything was measured (real cloth steps: 5–35).
+  static constexpr std::uint64_t kFirstStepCandidatesPerFace = 64;
+
+  /// `forced_slices` > 0: stream every step in that many slices per pass, flushing every slice.
+  explicit MemoryBudget(std::uint64_t limit_bytes, std::size_t forced_slices = 0)
+      : limit_(limit_bytes), forced_slices_(forced_slices) {}
+  [[nodiscard]] std::uint64_t limit() const { return limit_; }
+
+  /// The plan of a step over `faces` triangles whose traversal starts with `resident` bytes resident.
+  /// Throws Error when the resident part alone is already above the limit.
+  [[nodiscard]] MemoryPlan plan(std::uint64_t resident, std::size_t faces) const;
+  /// After a step: the transient bytes it would need unstreamed (candidates, front), for the next prediction.
+  void record(std::uint64_t candidate_pairs, std::uint64_t front_bytes);
+
+ private:
+  std::uint64_t limit_ = 0;  ///< 0 = no limit
+  std::size_t forced_slices_ = 0;
+  std::uint64_t last_transient_ = 0;
+};
+
+}  // namespace ccdlab
