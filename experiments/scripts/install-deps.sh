@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every build, test and analysis dependency of ccdlab from Debian packages.
+# Installs every build, test and analysis dependency of ccdlab from Debian packages (clang-14 with libomp and
+# libFuzzer: the sanitizer builds and the fuzz targets).
 # Idempotent: skips apt-get when all packages are already present. Needs root (or sudo).
 set -euo pipefail
 packages=(
@@ -7,6 +8,7 @@ packages=(
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev
   libyaml-cpp-dev libbenchmark-dev libgtest-dev libcli11-dev libfmt-dev nlohmann-json3-dev
   python3 python3-meshio python3-matplotlib python3-numpy python3-pandas python3-scipy python3-pytest
+  clang-14 libomp-14-dev libclang-rt-14-dev libfuzzer-14-dev llvm-14
 )
 missing=()
 for p in "${packages[@]}"; do
