@@ -73,4 +73,8 @@ def load_run(folder: str | Path) -> Run:
                 config = record
             elif record.get("type") == "summary":
                 summary = record
+        if summary is None:
+            # ccdlab writes results under .partial names and renames them when a run is complete; a file
+            # without its summary is from an interrupted older version or was cut: never plot it as complete.
+            raise ResultError(f"{jsonl}: no summary record: the run did not complete")
     return Run(folder, steps, config, summary)

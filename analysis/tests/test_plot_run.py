@@ -79,3 +79,11 @@ def test_scaling_plot_from_bench_results(tmp_path, capsys):
     assert png.is_file() and png.read_bytes()[:4] == b"\x89PNG"
     assert plot_scaling.main([str(tmp_path / "nothing")]) == 2
     assert "scaling.csv: not found" in capsys.readouterr().err
+
+
+def test_incomplete_run_is_refused(tmp_path):
+    folder = make_run(tmp_path / "cut")
+    lines = (folder / "steps.jsonl").read_text().splitlines()
+    (folder / "steps.jsonl").write_text(lines[0] + "\n")  # the summary record is missing
+    with pytest.raises(ResultError, match=r"no summary record: the run did not complete"):
+        load_run(folder)
