@@ -399,10 +399,11 @@ void CcdPipeline::traverse_and_test(const MemoryPlan& plan, StepResult& result) 
     test_candidates(result);
   } else {
     // Each pass cut into slices (the BVTT nodes of one breadth-first level, BV tests counted, leaf pairs met
-    // on the way kept as candidates); each slice traversed on its own (own pass id, state released after), and
-    // the candidates tested whenever `flush_pairs` are buffered.
-    const int slice_ids = int(std::min<std::size_t>(plan.slices * 4 + 1, 1u << 20));
+    // on the way kept as candidates); each slice traversed on its own and its scheduler state (a front)
+    // released after it, and the candidates tested whenever `flush_pairs` are buffered. The pass's own kept
+    // state is released too: a memory-bounded step keeps no front across steps.
     for (const TraversalPass& pass : passes_) {
+      strategies_.scheduler->release(pass.id);
       if (pass.bvh_a->nodes.empty() || pass.bvh_b->nodes.empty()) continue;
       auto t = Clock::now();
       std::vector<BvttNode> slices;
@@ -411,7 +412,7 @@ void CcdPipeline::traverse_and_test(const MemoryPlan& plan, StepResult& result) 
       for (std::size_t s = 0; s < slices.size(); ++s) {
         TraversalPass slice = pass;
         slice.root = slices[s];
-        slice.id = int(passes_.size()) + pass.id * slice_ids + int(s % std::size_t(slice_ids));
+        slice.id = -1 - pass.id;  // never a kept pass's id
         t = Clock::now();
         strategies_.scheduler->collect(slice, candidates_, result.traces);
         strategies_.scheduler->release(slice.id);

@@ -31,7 +31,7 @@ struct TraversalPass {
   int threads = 1;  ///< OpenMP threads the scheduler may use
   const std::vector<Index>* skip_root = nullptr;  ///< normal-cone culling of self tests (self passes), or none
   /// Where the traversal starts: the BVTT root, or one slice of it when a memory-bounded step streams its
-  /// candidates to the narrow phase slice by slice (CcdPipeline). A slice has its own `id`.
+  /// candidates to the narrow phase slice by slice (CcdPipeline; a slice has a negative `id`, released after it).
   BvttNode root{0, 0};
 };
 
