@@ -118,6 +118,10 @@ const SceneRegistry& scene_registry() {
              d.sphere_travel = p.real("sphere_travel");
              d.self_collision = p.boolean("self_collision");
              return make_drape_fold_scene(d);
+           },
+           [](const ParamValues& p) {
+             const std::uint64_t n = std::uint64_t(p.integer("resolution")), s = std::uint64_t(p.integer("sphere_segments"));
+             return 2 * n * n + (p.real("sphere_radius") > 0 ? s * s : 0);  // sheet + sphere (s longitudes × s/2 latitudes × 2)
            }});
     return r;
   }();

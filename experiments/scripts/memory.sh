@@ -10,12 +10,15 @@ t0="${1:-$data/balls16_18.ply}"
 t1="${2:-$data/balls16_19.ply}"
 [ -f "$t0" ] || { echo "memory.sh: $t0 not found (../shared/data absent?)" >&2; exit 2; }
 [ -x build/bin/ccdlab ] || experiments/scripts/build.sh release >&2
+row='import json, sys
+j = json.load(sys.stdin); m, c, cfg = j["memory"], j["contacts"], j["config"]
+print("| {} | {} | {:.0f} | {} | {:.0f} | {} + {} | {} |".format(cfg["scheduler"], cfg["memory_limit"], m["peak_rss_mb"],
+      m["streamed_slices"], j["ms"]["total"], c["vf"], c["ee"], j["hash"]))'
 echo "| scheduler | memory_limit | peak RSS of the step (MiB) | streamed slices | ms | contacts (vf + ee) | hash |"
 echo "|---|---|---|---|---|---|---|"
 for scheduler in sequential front; do
   for limit in none 160MiB 140MiB 125MiB; do
     build/bin/ccdlab step "$t0" "$t1" --scheduler "$scheduler" --memory-limit "$limit" --json |
-      /usr/bin/python3 -c 'import json,sys; j=json.load(sys.stdin); m=j["memory"]; c=j["contacts"]
-print(f"| {j[\"config\"][\"scheduler\"]} | {j[\"config\"][\"memory_limit\"]} | {m[\"peak_rss_mb\"]:.0f} | {m[\"streamed_slices\"]} | {j[\"ms\"][\"total\"]:.0f} | {c[\"vf\"]} + {c[\"ee\"]} | {j[\"hash\"]} |")'
+      /usr/bin/python3 -c "$row"
   done
 done

@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "framework/config/yaml_reader.hpp"
+#include "framework/pipeline/memory_budget.hpp"
 #include "framework/util/memory.hpp"
 #include "framework/util/parallel.hpp"
 
@@ -209,7 +210,19 @@ std::string to_yaml(const nlohmann::json& j) {
 }
 
 MeshSequence make_scene(const ExperimentConfig& c, const Registries& reg) {
-  if (c.scene.builtin) return reg.scenes.make(c.scene.generator);
+  if (c.scene.builtin) {
+    const auto* entry = reg.scenes.find(c.scene.generator.name);
+    if (entry && entry->triangles && c.memory_limit_bytes > 0) {
+      const std::uint64_t triangles = entry->triangles(c.scene.generator.params),
+                          need = triangles * MemoryBudget::kResidentBytesPerTriangle;
+      if (need > c.memory_limit_bytes)
+        fail("memory_limit {}: scene {} would have {} triangles, which need at least {} ({} bytes per triangle before "
+             "the first step); lower the scene's resolution or raise memory_limit",
+             format_bytes(c.memory_limit_bytes), c.scene.generator.name, triangles, format_bytes(need),
+             MemoryBudget::kResidentBytesPerTriangle);
+    }
+    return reg.scenes.make(c.scene.generator);
+  }
   return load_frame_files(c.scene.files, c.scene.self_collision);
 }
 

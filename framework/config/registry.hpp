@@ -1,6 +1,7 @@
 #pragma once
 // A registry per interface: name → one-line description, parameter specs (with defaults and ranges) and a
 // factory. It drives YAML validation ("valid values are: …"), `ccdlab list`, and construction.
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <map>
@@ -62,6 +63,9 @@ struct RegistryEntry {
   std::string description;
   std::vector<ParamSpec> params;
   std::function<Product(const ParamValues&)> make;
+  /// Optional, for scenes: how many triangles `make` will produce, known before making it (so that a run too
+  /// large for memory_limit is refused at once rather than after the scene is built).
+  std::function<std::uint64_t(const ParamValues&)> triangles{};
 
   /// Values holding every parameter's default.
   [[nodiscard]] ParamValues defaults() const {

@@ -23,6 +23,10 @@ class MemoryBudget {
  public:
   /// Bytes one buffered candidate face pair costs: the pair in a thread's buffer and again in the merged list.
   static constexpr std::uint64_t kBytesPerCandidate = 2 * 8;
+  /// Resident bytes per triangle of a whole run before its first traversal (mesh, frames, BVH, boxes, orphans):
+  /// 845 on the n-body step, 118 MiB for 146,480 triangles (docs/reliability.md). A lower bound for the
+  /// refusal of a generated scene before it is made.
+  static constexpr std::uint64_t kResidentBytesPerTriangle = 800;
   /// First-step guess of the candidates per triangle, before anything was measured (real cloth steps: 5–35).
   static constexpr std::uint64_t kFirstStepCandidatesPerFace = 64;
 

@@ -89,3 +89,11 @@ cli_test(bad.out_contacts_no_dir 2 "${E}--contacts: cannot write '/nonexistent/d
 cli_test(bad.out_contacts_directory 2 "${E}--contacts: cannot write '.' \\(it is a directory\\)" step ${T0} ${CLI_DIR}/fall_t1.obj --contacts .)
 cli_test(bad.out_dir_is_file 2 "${E}output.dir: cannot create '.*fall_t0.obj': a file of that name exists" run ${CLI_DIR}/tiny.yaml --set output.dir=${T0})
 cli_test(ok.version 0 "^ccdlab [0-9a-f]+" --version)
+
+# Memory: a generated scene too large for memory_limit is refused before it is made; a run whose structures
+# would not fit is refused before its first step; a bad size is named.
+cli_test(bad.memory_scene_too_large 2 "${E}memory_limit 1.00 GiB: scene drape_fold would have 32000064 triangles, which need at least" run ${CLI_DIR}/tiny.yaml --set scene.resolution=4000 --set memory_limit=1GiB)
+cli_test(bad.memory_run_too_large 2 "${E}memory_limit 1.0 MiB: this run needs about .* before its first step" run ${CLI_DIR}/tiny.yaml --set memory_limit=1MiB --set output.dir=out)
+cli_test(bad.memory_limit_value 2 "${E}--set memory_limit: memory_limit: expected a size like 8GiB, 512MiB or 60%" run ${CLI_DIR}/tiny.yaml --set memory_limit=lots)
+cli_test(bad.memory_limit_flag 2 "${E}--memory-limit: expected a size like 8GiB, 512MiB or 60%" step ${T0} ${T0} --memory-limit 2X)
+cli_test(ok.memory_limit_step 0 "contacts vf=3 ee=0" step ${T0} ${CLI_DIR}/fall_t1.obj --memory-limit 64MiB)
