@@ -76,7 +76,7 @@ void validate_bvh(const BvhTopology& bvh, std::span<const Index> faces) {
 }
 
 void replace_subtree(BvhTopology& bvh, Index root, const BvhTopology& sub) {
-  const Index size = 2 * bvh.leaf_count[root] - 1;
+  const Index size = bvh.subtree_end(root) - root;
   if (sub.size() != size) fail("bvh: replacement sub-tree has {} nodes, expected {}", sub.size(), size);
   const Index parent = bvh.nodes[root].parent;
   for (Index i = 0; i < size; ++i) {

@@ -52,7 +52,7 @@ struct BvttView {
   [[nodiscard]] bool in_skipped_patch(Index a, Index b) const {
     if (!skip_root) return false;
     const Index q = skip_root[a];
-    return q >= 0 && b >= q && b < q + 2 * bvh_a->leaf_count[q] - 1;
+    return q >= 0 && b >= q && b < bvh_a->subtree_end(q);
   }
 };
 

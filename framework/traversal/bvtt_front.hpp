@@ -57,7 +57,7 @@ void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNod
     if (v.emit_leaf_pair(A, B, pairs)) next.push_back(FrontNode{a, b, flags});
   };
   // Is `p` an ancestor of (or equal to) `q` in tree a? Sub-tree of p = pre-order range [p, p + 2·leaves − 1).
-  auto contains = [&](Index p, Index q) { return q >= p && q < p + 2 * v.bvh_a->leaf_count[p] - 1; };
+  auto contains = [&](Index p, Index q) { return q >= p && q < v.bvh_a->subtree_end(p); };
   // Appends a stopping node; then collapses the last two entries into their parent while they are carried-over,
   // non-overlapping siblings and the parent does not overlap either.
   auto push_stop = [&](FrontNode n) {
