@@ -106,8 +106,10 @@ void emit(YAML::Emitter& out, const nlohmann::json& j) {
 
 }  // namespace
 
+namespace {
 ExperimentConfig load_experiment_checked(const std::string& path, const std::vector<std::string>& overrides,
                                          const Registries& reg);
+}  // namespace
 
 ExperimentConfig load_experiment(const std::string& path, const std::vector<std::string>& overrides,
                                  const Registries& reg) {
@@ -119,6 +121,7 @@ ExperimentConfig load_experiment(const std::string& path, const std::vector<std:
   }
 }
 
+namespace {
 ExperimentConfig load_experiment_checked(const std::string& path, const std::vector<std::string>& overrides,
                                          const Registries& reg) {
   YAML::Node root = load_yaml_file(path);
@@ -178,6 +181,7 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
   }
   return c;
 }
+}  // namespace
 
 nlohmann::json to_json(const ExperimentConfig& c) {
   nlohmann::json j;

@@ -29,7 +29,6 @@ class OutputFile {
   ~OutputFile();
 
   [[nodiscard]] bool is_open() const { return out_.is_open(); }
-  std::ofstream& stream() { return out_; }
   template <class T>
   OutputFile& operator<<(const T& value) {
     out_ << value;
