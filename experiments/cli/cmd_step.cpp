@@ -1,4 +1,5 @@
-// `ccdlab step T0 T1 [--k K] [--scheduler S] [--threads N] [--tester NAME[:key=value,…]] [--contacts FILE.csv] [--json]`:
+// `ccdlab step T0 T1 [--k K] [--scheduler S] [--threads N] [--tester NAME[:key=value,…]] [--narrow MODE]
+//  [--representative RULE] [--contacts FILE.csv] [--json]`:
 // one CCD step between two mesh files of the same topology (one self-colliding body).
 
 
@@ -31,6 +32,7 @@ int step_command(const StepOptions& o) {
   s.k = o.k;
   s.threads = o.threads;
   s.memory_limit = parse_memory_size(o.memory_limit, "--memory-limit");
+  s.narrow = {parse_narrow_mode(o.narrow), parse_representative_rule(o.representative)};
   s.builder = builder_registry().make(choose(builder_registry(), "hierarchy", o.hierarchy));
   s.scheduler = scheduler_registry().make(choose(scheduler_registry(), "scheduler", o.scheduler));
   s.tester = tester_registry().make(parse_tester(o.tester, tester_registry()));
@@ -65,11 +67,14 @@ int step_command(const StepOptions& o) {
     j["orphans"] = {{"vf", pipeline.orphans().vf.size()}, {"ee", pipeline.orphans().ee.size()}};
     j["memory"]["estimate_mb"] =
         double(estimate_pipeline_bytes(mesh, o.k, pipeline.orphans().vf.size() + pipeline.orphans().ee.size())) / (1 << 20);
-    j["config"] = {{"k", o.k}, {"hierarchy", o.hierarchy}, {"scheduler", o.scheduler}, {"threads", o.threads}, {"tester", o.tester}, {"memory_limit", o.memory_limit}};
+    j["config"] = {{"k", o.k}, {"hierarchy", o.hierarchy}, {"scheduler", o.scheduler}, {"threads", o.threads}, {"tester", o.tester},
+                   {"narrow", {{"mode", o.narrow}, {"representative", o.representative}}}, {"memory_limit", o.memory_limit},
+                   {"simd_target", plane_filter_target()}};
     fmt::print("{}\n", j.dump(2));
   } else {
-    fmt::print("ccdlab step {} -> {}: {} triangles, k={} hierarchy={} scheduler={} tester={}\n\n", o.mesh_t0, o.mesh_t1,
-               mesh.num_faces(), o.k, o.hierarchy, o.scheduler, o.tester);
+    fmt::print("ccdlab step {} -> {}: {} triangles, k={} hierarchy={} scheduler={} tester={} narrow={}/{} ({})\n\n",
+               o.mesh_t0, o.mesh_t1, mesh.num_faces(), o.k, o.hierarchy, o.scheduler, o.tester, o.narrow,
+               o.representative, plane_filter_target());
     print_table_header(stdout);
     print_table_row(stdout, "0", r);
     fmt::print("\ncontacts vf={} ee={}; hash {:016x}\n", r.counters.contacts_vf, r.counters.contacts_ee, hash);

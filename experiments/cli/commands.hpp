@@ -20,6 +20,8 @@ struct StepOptions {
   std::string scheduler = "sequential";
   std::string hierarchy = "median";
   std::string tester = "float";
+  std::string narrow = "batched";
+  std::string representative = "fixed";
   int threads = 1;
   std::string memory_limit = "80%";
   std::string contacts_csv;

@@ -49,6 +49,10 @@ int main(int argc, char** argv) {
   step_cmd->add_option("--hierarchy", step.hierarchy, "hierarchy builder")->capture_default_str();
   step_cmd->add_option("--threads", step.threads, "threads")->capture_default_str();
   step_cmd->add_option("--tester", step.tester, "primitive tester, e.g. conservative:delta=1e-4")->capture_default_str();
+  step_cmd->add_option("--narrow", step.narrow, "narrow phase: batched (SIMD culling stages) or scalar")
+      ->check(CLI::IsMember({"batched", "scalar"}))->capture_default_str();
+  step_cmd->add_option("--representative", step.representative, "representative rule: first_free or fixed (owners)")
+      ->check(CLI::IsMember({"first_free", "fixed"}))->capture_default_str();
   step_cmd->add_option("--memory-limit", step.memory_limit, "resident memory the step may use: 8GiB, 60%, none (above the "
                        "predicted need it streams candidates to the narrow phase)")->capture_default_str();
   step_cmd->add_option("--contacts", step.contacts_csv, "write contacts to this CSV (kind,a,b,c,d,toi)");

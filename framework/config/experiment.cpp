@@ -133,7 +133,7 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
   for (const auto& o : overrides) overridden.insert(apply_override(root, o));
   YamlReader r(path, overridden);
   r.check_keys(root, "", {"name", "scene", "bv", "hierarchy", "restructure", "normal_cones", "scheduler", "threads", "tester",
-                   "memory_limit", "output"});
+                   "narrow", "memory_limit", "output"});
 
   ExperimentConfig c;
   c.source = path;
@@ -163,6 +163,19 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
     }
   }
   if (root["normal_cones"]) c.normal_cones = r.boolean(root["normal_cones"], "normal_cones");
+  if (const YAML::Node n = root["narrow"]) {
+    r.check_keys(n, "narrow", {"mode", "representative"});
+    if (const YAML::Node m = n["mode"]) {
+      const std::string mode = r.string(m, "narrow.mode");
+      if (mode != "scalar" && mode != "batched") r.error(m, "narrow.mode", "scalar or batched");
+      c.narrow.mode = parse_narrow_mode(mode);
+    }
+    if (const YAML::Node m = n["representative"]) {
+      const std::string rule = r.string(m, "narrow.representative");
+      if (rule != "fixed" && rule != "first_free") r.error(m, "narrow.representative", "fixed or first_free");
+      c.narrow.representative = parse_representative_rule(rule);
+    }
+  }
   if (root["threads"]) c.threads = int(r.integer(root["threads"], "threads", 1, kMaxThreads));
   if (root["memory_limit"]) c.memory_limit = r.string(root["memory_limit"], "memory_limit");
   try {
@@ -198,6 +211,7 @@ nlohmann::json to_json(const ExperimentConfig& c) {
   j["hierarchy"] = params_json(c.hierarchy);
   j["restructure"] = {{"threshold", c.restructure_threshold}};
   j["normal_cones"] = c.normal_cones;
+  j["narrow"] = {{"mode", to_string(c.narrow.mode)}, {"representative", to_string(c.narrow.representative)}};
   j["scheduler"] = params_json(c.scheduler);
   j["threads"] = c.threads;
   j["memory_limit"] = c.memory_limit;
@@ -236,6 +250,7 @@ PipelineStrategies make_strategies(const ExperimentConfig& c, const Registries& 
   s.threads = c.threads;
   s.restructure_threshold = c.restructure_threshold;
   s.normal_cones = c.normal_cones;
+  s.narrow = c.narrow;
   s.memory_limit = c.memory_limit_bytes;
   s.builder = reg.builders.make(c.hierarchy);
   s.scheduler = reg.schedulers.make(c.scheduler);

@@ -2,6 +2,7 @@
 // The experiment config: YAML → typed structs, in this one place. Every key is validated; an unknown key or
 // a bad value is an Error "file:line: key: expected …, got …". Top-level keys:
 //   name, scene, bv {k}, hierarchy, restructure {threshold}, normal_cones, scheduler, threads, tester,
+//   narrow {mode, representative}, memory_limit,
 //   output {dir, csv, jsonl, contacts}
 // Strategies (hierarchy, scheduler, tester, built-in scenes) are a name or a map {name: …, param: …},
 // validated against the registries (see docs/config.md).
@@ -58,6 +59,7 @@ struct ExperimentConfig {
   StrategyChoice tester{"float", {}};
   double restructure_threshold = 0;  ///< restructure: {threshold: …}; 0 = off
   bool normal_cones = false;         ///< normal_cones: true — continuous normal-cone culling of self tests
+  NarrowOptions narrow;              ///< narrow: {mode: scalar | batched, representative: fixed | first_free}
   /// memory_limit: resident memory a step may use ("8GiB", "60%", "none"); above the predicted need the step
   /// streams its candidates (framework/pipeline/memory_budget.hpp). Default: 80% of this machine's memory.
   std::string memory_limit = "80%";

@@ -1,7 +1,7 @@
 #include "framework/pipeline/brute_force.hpp"
 
 #include "framework/primitive/feature_pairs.hpp"
-#include "framework/primitive/narrow_phase.hpp"
+#include "framework/narrow/narrow_phase.hpp"
 
 namespace ccdlab {
 
@@ -19,23 +19,26 @@ std::vector<FacePair> brute_force_candidates(const TriMesh& mesh, const Collisio
 
 std::vector<Contact> brute_force_contacts(const TriMesh& mesh, const CollisionRules& rules, const Positions& x_t0,
                                           const Positions& x_t1, const PrimitiveTester& tester, bool box_cull) {
-  Ownership unused;
-  NarrowPhase narrow(mesh, unused, tester);
-  narrow.begin_step(x_t0, x_t1);
-  std::vector<Contact> contacts;
-  StepCounters counters;
+  // Every pair, one at a time: the scalar narrow phase on a batch that holds them all.
+  NarrowPhase narrow(mesh, tester, {NarrowMode::scalar, RepresentativeRule::fixed}, [](Index) { return false; });
+  PhaseTrace trace;
+  narrow.begin_step(x_t0, x_t1, 1, trace);
+  NarrowScratch scratch;
   for (Index v = 0; v < mesh.num_vertices(); ++v) {
     int bv = rules.body_of_vertex(v);
     if (bv < 0) continue;
     for (Index f = 0; f < mesh.num_faces(); ++f)
       if (!contains_vertex(mesh.face(f), v) && rules.bodies_interact(bv, rules.body_of_face(f)))
-        narrow.test_vf(v, f, contacts, counters, box_cull);
+        scratch.batch.vf.push_back({v, f});
   }
   for (Index a = 0; a < mesh.num_edges(); ++a)
     for (Index b = a + 1; b < mesh.num_edges(); ++b)
       if (!shares_vertex(mesh.edge(a), mesh.edge(b)) &&
           rules.bodies_interact(rules.body_of_vertex(mesh.edge(a)[0]), rules.body_of_vertex(mesh.edge(b)[0])))
-        narrow.test_ee(a, b, contacts, counters, box_cull);
+        scratch.batch.ee.push_back({a, b});
+  std::vector<Contact> contacts;
+  NarrowCounters counters;
+  narrow.run(scratch, contacts, counters, box_cull);
   sort_contacts(contacts);
   return contacts;
 }

@@ -15,9 +15,9 @@ std::vector<FacePair> brute_force_candidates(const TriMesh& mesh, const Collisio
 
 /// All colliding feature pairs: every VF (v ∉ f) and EE (no shared vertex) pair of interacting bodies,
 /// each tested with `tester`. Sorted like CcdPipeline's contacts. With `box_cull`, pairs whose swept feature
-/// boxes are disjoint are skipped as the pipeline skips them: the reference for testers that may report a
-/// near miss as a hit (`float` within its tolerance), where the question is only whether the BVH, the
-/// ownership rule and the culling lost a pair.
+/// 26-DOPs are not within η are skipped as the pipeline skips them (framework/narrow/feature_bounds.hpp): the
+/// reference for testers that may report a near miss as a hit (`float` within its tolerance), where the
+/// question is only whether the BVH, the representative rule and the culling lost a pair.
 std::vector<Contact> brute_force_contacts(const TriMesh& mesh, const CollisionRules& rules, const Positions& x_t0,
                                           const Positions& x_t1, const PrimitiveTester& tester, bool box_cull = false);
 

@@ -54,7 +54,7 @@ std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, std::size_t or
   const std::uint64_t bv = std::visit([](const auto& vec) { return std::uint64_t(sizeof(vec[0])); }, make_bvs(k));
   const std::uint64_t bvh = 2 * f * (sizeof(BvhNode) + sizeof(Index) + bv);  // nodes, leaf counts, node volumes
   const std::uint64_t face_bvs = f * bv;
-  const std::uint64_t feature_boxes = (v + e + f) * sizeof(Box3);
+  const std::uint64_t feature_boxes = v * sizeof(PaddedDop);
   const std::uint64_t ownership = (v + e) * sizeof(Index) + f;
   const std::uint64_t orphans = std::uint64_t(orphan_pairs) * sizeof(EdgeEdgePair);
   const std::uint64_t frames = 2 * v * sizeof(Vec3);
@@ -65,8 +65,11 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
     : mesh_(mesh),
       rules_(mesh, std::move(bodies)),
       strategies_(std::move(strategies)),
-      owners_(assign_owners(mesh)),
-      narrow_(mesh_, owners_, *strategies_.tester),
+      narrow_(mesh_, *strategies_.tester, strategies_.narrow,
+              [this](Index f) {
+                const int b = rules_.body_of_face(f);
+                return rules_.bodies_interact(b, b);
+              }),
       face_bvs_(make_bvs(strategies_.k)),
       budget_(strategies_.memory_limit, strategies_.stream_slices) {
   if (strategies_.threads < 1 || strategies_.threads > kMaxThreads)
@@ -74,13 +77,9 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
   if (strategies_.normal_cones && strategies_.tester->thickness() > 0)
     fail("normal_cones: culling is exact only for contact at zero distance; got tester thickness {}",
          strategies_.tester->thickness());
-  orphans_ = build_orphan_set(mesh_, owners_, [this](Index f) {
-    int b = rules_.body_of_face(f);
-    return rules_.bodies_interact(b, b);
-  });
   if (const std::uint64_t limit = strategies_.memory_limit; limit > 0) {
     const std::uint64_t resident = current_rss_bytes(),
-                        need = estimate_pipeline_bytes(mesh_, strategies_.k, orphans_.vf.size() + orphans_.ee.size());
+                        need = estimate_pipeline_bytes(mesh_, strategies_.k, orphans().vf.size() + orphans().ee.size());
     if (resident + need > limit)
       fail("memory_limit {}: this run needs about {} before its first step ({} resident now with the scene, {} more "
            "for the BVH, feature boxes and orphan set of {} triangles); lower the scene's size or raise memory_limit",
@@ -222,42 +221,40 @@ void CcdPipeline::refit_body(BodyState& body, PhaseTrace& trace) {
       body.node_bvs);
 }
 
-template <class Pairs, class TestOne>
-void CcdPipeline::test_in_parallel(const Pairs& pairs, std::size_t chunk, const char* phase, StepResult& result,
-                                   TestOne&& test_one) {
+template <class Gather>
+void CcdPipeline::narrow_in_parallel(std::size_t n, std::size_t chunk, const char* phase, StepResult& result,
+                                     Gather&& gather) {
   const int threads = strategies_.threads;
   struct Local {
     std::vector<Contact> contacts;
-    StepCounters counters;
-    StepResult record;
+    NarrowCounters counters;
+    NarrowScratch scratch;
+    std::vector<VertexFacePair> tested_vf;
+    std::vector<EdgeEdgePair> tested_ee;
   };
   std::vector<PerThread<Local>> local(threads);
   PhaseTrace trace{phase, Distribution::dynamic, 0, {}, {}};
-  parallel_chunks(pairs.size(), chunk, threads, trace, [&](std::size_t b, std::size_t e, int tid) {
+  parallel_chunks(n, chunk, threads, trace, [&](std::size_t b, std::size_t e, int tid) {
     Local& l = local[tid].value;
-    StepResult* record = record_tested_ ? &l.record : nullptr;
-    for (std::size_t i = b; i < e; ++i) test_one(pairs[i], l.contacts, l.counters, record);
+    FeatureBatch& batch = l.scratch.batch;
+    batch.clear();
+    const auto t = Clock::now();
+    gather(b, e, batch, l.counters);
+    l.counters.gather_ns += std::uint64_t(ms_since(t) * 1e6);
+    if (record_tested_) {
+      l.tested_vf.insert(l.tested_vf.end(), batch.vf.begin(), batch.vf.end());
+      l.tested_ee.insert(l.tested_ee.end(), batch.ee.begin(), batch.ee.end());
+    }
+    narrow_.run(l.scratch, l.contacts, l.counters);
   });
   // Merge in thread order; the final sort makes the result independent of the schedule.
   const auto t0 = Clock::now();
-  StepCounters& c = result.counters;
   for (int t = 0; t < threads; ++t) {
     const Local& lt = local[t].value;
     result.contacts.insert(result.contacts.end(), lt.contacts.begin(), lt.contacts.end());
-    const StepCounters& l = lt.counters;
-    c.vf_pairs += l.vf_pairs;
-    c.ee_pairs += l.ee_pairs;
-    c.vf_tests += l.vf_tests;
-    c.ee_tests += l.ee_tests;
-    c.contacts_vf += l.contacts_vf;
-    c.contacts_ee += l.contacts_ee;
-    c.orphans_culled += l.orphans_culled;
-    c.tests_filtered += l.tests_filtered;
-    c.tests_fallback += l.tests_fallback;
-    if (record_tested_) {
-      result.tested_vf.insert(result.tested_vf.end(), lt.record.tested_vf.begin(), lt.record.tested_vf.end());
-      result.tested_ee.insert(result.tested_ee.end(), lt.record.tested_ee.begin(), lt.record.tested_ee.end());
-    }
+    result.counters += lt.counters;
+    result.tested_vf.insert(result.tested_vf.end(), lt.tested_vf.begin(), lt.tested_vf.end());
+    result.tested_ee.insert(result.tested_ee.end(), lt.tested_ee.begin(), lt.tested_ee.end());
   }
   trace.serial_ms += ms_since(t0);
   result.traces.push_back(std::move(trace));
@@ -331,8 +328,8 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   }
 
   t = Clock::now();
-  PhaseTrace boxes{"feature_boxes", Distribution::dynamic, 0, {}, {}};
-  narrow_.begin_step(x_t0, x_t1, threads, &boxes);  // swept boxes of every vertex, edge, face
+  PhaseTrace boxes{"feature_bounds", Distribution::dynamic, 0, {}, {}};
+  narrow_.begin_step(x_t0, x_t1, threads, boxes);  // swept 26-DOP of every vertex
   result.traces.push_back(std::move(boxes));
   tm.narrow_ms = ms_since(t);
 
@@ -342,34 +339,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   result.memory.limit_bytes = budget_.limit();
   result.memory.slices = plan.streamed ? plan.slices : 0;
 
-  t = Clock::now();
-  const std::uint64_t vf_before = c.vf_pairs, ee_before = c.ee_pairs, tests_before = c.vf_tests + c.ee_tests;
-  const bool cull = strategies_.normal_cones;
-  auto same_skipped_patch = [this](Index f, Index g) {
-    return face_patch_[f] >= 0 && face_patch_[f] == face_patch_[g];
-  };
-  test_in_parallel(orphans_.vf, kOrphanChunk, "orphans_vf", result,
-                   [&](const VertexFacePair& p, std::vector<Contact>& out, StepCounters& lc, StepResult* rec) {
-                     if (cull && same_skipped_patch(owners_.vertex_owner[p.v], p.f)) {
-                       ++lc.orphans_culled;
-                       return;
-                     }
-                     narrow_.test_vf(p.v, p.f, out, lc);
-                     if (rec) rec->tested_vf.push_back(p);
-                   });
-  test_in_parallel(orphans_.ee, kOrphanChunk, "orphans_ee", result,
-                   [&](const EdgeEdgePair& p, std::vector<Contact>& out, StepCounters& lc, StepResult* rec) {
-                     if (cull && same_skipped_patch(owners_.edge_owner[p.a], owners_.edge_owner[p.b])) {
-                       ++lc.orphans_culled;
-                       return;
-                     }
-                     narrow_.test_ee(p.a, p.b, out, lc);
-                     if (rec) rec->tested_ee.push_back(p);
-                   });
-  c.orphan_vf = c.vf_pairs - vf_before;  // orphan pairs considered (culled ones counted apart)
-  c.orphan_ee = c.ee_pairs - ee_before;
-  c.orphan_tests = c.vf_tests + c.ee_tests - tests_before;
-  tm.orphan_ms = ms_since(t);
+  test_orphans(result);
 
   t = Clock::now();
   sort_contacts(result.contacts);
@@ -382,11 +352,42 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
 void CcdPipeline::test_candidates(StepResult& result) {
   const auto t = Clock::now();
   result.counters.candidate_pairs += candidates_.pairs.size();
-  test_in_parallel(candidates_.pairs, kCandidateChunk, "narrow", result,
-                   [this](const FacePair& p, std::vector<Contact>& out, StepCounters& lc, StepResult* rec) {
-                     narrow_.test_face_pair(p.a, p.b, out, lc, rec);
-                   });
+  const std::span<const FacePair> pairs(candidates_.pairs);
+  narrow_in_parallel(pairs.size(), kCandidateChunk, "narrow", result,
+                     [&](std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters&) {
+                       narrow_.gather(pairs.subspan(b, e - b), batch);
+                     });
   result.timings.narrow_ms += ms_since(t);
+}
+
+void CcdPipeline::test_orphans(StepResult& result) {
+  const auto t = Clock::now();
+  StepCounters& c = result.counters;
+  const std::uint64_t vf_before = c.vf_pairs, ee_before = c.ee_pairs, tests_before = c.vf_tests + c.ee_tests;
+  const OrphanSet& orphans = this->orphans();
+  const Representatives& reps = narrow_.representatives();
+  // With normal cones, orphan pairs of two faces in one skipped patch cannot touch (same height-field argument
+  // as for the candidates the traversal skipped).
+  const bool cull = strategies_.normal_cones;
+  auto same_skipped_patch = [this](Index f, Index g) { return face_patch_[f] >= 0 && face_patch_[f] == face_patch_[g]; };
+  const std::size_t nvf = orphans.vf.size(), n = nvf + orphans.ee.size();
+  narrow_in_parallel(n, kOrphanChunk, "orphans", result,
+                     [&](std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters& lc) {
+                       for (std::size_t i = b; i < std::min(e, nvf); ++i) {
+                         const VertexFacePair& p = orphans.vf[i];
+                         if (cull && same_skipped_patch(reps.face_of_vertex(p.v), p.f)) ++lc.orphans_culled;
+                         else batch.vf.push_back(p);
+                       }
+                       for (std::size_t i = std::max(b, nvf); i < e; ++i) {
+                         const EdgeEdgePair& p = orphans.ee[i - nvf];
+                         if (cull && same_skipped_patch(reps.face_of_edge(p.a), reps.face_of_edge(p.b))) ++lc.orphans_culled;
+                         else batch.ee.push_back(p);
+                       }
+                     });
+  c.orphan_vf = c.vf_pairs - vf_before;  // orphan pairs considered (culled ones counted apart)
+  c.orphan_ee = c.ee_pairs - ee_before;
+  c.orphan_tests = c.vf_tests + c.ee_tests - tests_before;
+  result.timings.orphan_ms = ms_since(t);
 }
 
 void CcdPipeline::traverse_and_test(const MemoryPlan& plan, StepResult& result) {
@@ -435,9 +436,10 @@ void CcdPipeline::traverse_and_test(const MemoryPlan& plan, StepResult& result) 
 }
 
 std::size_t CcdPipeline::memory_bytes() const {
-  std::size_t bytes = mesh_.memory_bytes() + owners_.vertex_owner.size() * sizeof(Index) +
-                      owners_.edge_owner.size() * sizeof(Index) + owners_.owned_mask.size() +
-                      orphans_.vf.size() * sizeof(VertexFacePair) + orphans_.ee.size() * sizeof(EdgeEdgePair);
+  const Ownership& own = narrow_.representatives().owners();
+  std::size_t bytes = mesh_.memory_bytes() + own.vertex_owner.size() * sizeof(Index) +
+                      own.edge_owner.size() * sizeof(Index) + own.owned_mask.size() + narrow_.memory_bytes() +
+                      orphans().vf.size() * sizeof(VertexFacePair) + orphans().ee.size() * sizeof(EdgeEdgePair);
   for (const BodyState& b : bodies_)
     bytes += b.bvh.memory_bytes() + std::visit([](const auto& v) { return v.size() * sizeof(v[0]); }, b.node_bvs);
   return bytes;

@@ -1,7 +1,8 @@
 #pragma once
 // CcdPipeline: one CCD step, frame i → i+1, wired from the strategies chosen in the config (design.md):
 //   swept face BVs → BVH refit (built once, on the first step) → BVTT traversal (scheduler) → candidate face
-//   pairs → feature pairs (ownership rule) + orphan set → elementary tests (tester) → sorted contacts.
+//   pairs → narrow phase (framework/narrow/: feature pairs of candidates and orphans → culling → elementary
+//   tests) → sorted contacts.
 // Only the passes the bodies ask for run: no self pass without self-collision, no pair pass without a
 // second body.
 #include <memory>
@@ -11,8 +12,7 @@
 #include "framework/pipeline/bodies.hpp"
 #include "framework/pipeline/memory_budget.hpp"
 #include "framework/pipeline/step_result.hpp"
-#include "framework/primitive/feature_pairs.hpp"
-#include "framework/primitive/narrow_phase.hpp"
+#include "framework/narrow/narrow_phase.hpp"
 #include "framework/primitive/tester.hpp"
 #include "framework/traversal/normal_cones.hpp"
 #include "framework/traversal/scheduler.hpp"
@@ -33,6 +33,8 @@ struct PipelineStrategies {
   /// Stream every step in (about) this many slices per pass, whatever the memory: to test streaming and to
   /// measure its cost. 0 = only when the memory limit asks for it.
   std::size_t stream_slices = 0;
+  /// How the narrow phase runs: scalar or batched, and its representative rule (framework/narrow/).
+  NarrowOptions narrow;
   std::unique_ptr<HierarchyBuilder> builder;
   std::unique_ptr<TraversalScheduler> scheduler;
   std::unique_ptr<PrimitiveTester> tester;
@@ -40,7 +42,7 @@ struct PipelineStrategies {
 
 class CcdPipeline {
  public:
-  /// `mesh` must outlive the pipeline. Builds the ownership and the orphan set (once per topology).
+  /// `mesh` must outlive the pipeline. Builds the representative rule's orphan set (once per topology).
   CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, PipelineStrategies strategies);
   ~CcdPipeline();
 
@@ -52,8 +54,8 @@ class CcdPipeline {
 
   [[nodiscard]] const TriMesh& mesh() const { return mesh_; }
   [[nodiscard]] const CollisionRules& rules() const { return rules_; }
-  [[nodiscard]] const Ownership& owners() const { return owners_; }
-  [[nodiscard]] const OrphanSet& orphans() const { return orphans_; }
+  [[nodiscard]] const Representatives& representatives() const { return narrow_.representatives(); }
+  [[nodiscard]] const OrphanSet& orphans() const { return narrow_.representatives().orphans(); }
   [[nodiscard]] const PipelineStrategies& strategies() const { return strategies_; }
   /// The swept BV of every face in the last step (index = face id).
   [[nodiscard]] const AnyBvs& face_bvs() const { return face_bvs_; }
@@ -84,14 +86,15 @@ class CcdPipeline {
   /// memory plan streams.
   void traverse_and_test(const MemoryPlan& plan, StepResult& result);
   void test_candidates(StepResult& result);
-  template <class Pairs, class TestOne>
-  void test_in_parallel(const Pairs& pairs, std::size_t chunk, const char* phase, StepResult& result, TestOne&& test_one);
+  void test_orphans(StepResult& result);
+  /// The narrow phase over `n` items in chunks on every thread: `gather(begin, end, batch)` puts a chunk's
+  /// feature pairs into the batch, which is then culled and tested; contacts and counters merged in thread order.
+  template <class Gather>
+  void narrow_in_parallel(std::size_t n, std::size_t chunk, const char* phase, StepResult& result, Gather&& gather);
 
   const TriMesh& mesh_;
   CollisionRules rules_;
   PipelineStrategies strategies_;
-  Ownership owners_;
-  OrphanSet orphans_;
   NarrowPhase narrow_;
   std::vector<BodyState> bodies_;
   std::vector<TraversalPass> passes_;
@@ -104,7 +107,7 @@ class CcdPipeline {
 };
 
 /// Bytes a pipeline over `mesh` will add before its first traversal: the BVHs and their volumes, the swept face
-/// volumes, the feature boxes, the ownership, the orphan set and the two frames of a step. Checked against
+/// volumes, the feature bounds, the ownership, the orphan set and the two frames of a step. Checked against
 /// memory_limit when a pipeline is made, so that a run too large for the machine is refused before it starts.
 std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, std::size_t orphan_pairs);
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "framework/narrow/narrow_counters.hpp"
 #include "framework/primitive/contact.hpp"
 #include "framework/primitive/feature_pairs.hpp"
 #include "framework/traversal/candidates.hpp"
@@ -10,22 +11,11 @@
 
 namespace ccdlab {
 
-struct StepCounters {
+/// The step's work: the broad phase's counters here, the narrow phase's per stage (narrow_counters.hpp).
+struct StepCounters : NarrowCounters {
   std::uint64_t bv_tests = 0;         ///< BVH node pair overlap tests in traversal
   std::uint64_t candidate_pairs = 0;  ///< non-adjacent face pairs whose swept BVs overlap
-  std::uint64_t vf_pairs = 0;         ///< vertex–face feature pairs considered (candidates' owned + orphans)
-  std::uint64_t ee_pairs = 0;         ///< edge–edge feature pairs considered
-  std::uint64_t orphan_vf = 0;        ///< of which from the orphan set
-  std::uint64_t orphan_ee = 0;
-  std::uint64_t vf_tests = 0;         ///< elementary VF tests run (feature boxes overlapped)
-  std::uint64_t ee_tests = 0;         ///< elementary EE tests run
-  std::uint64_t orphan_tests = 0;     ///< of the VF + EE tests, those from the orphan set
-  std::uint64_t orphans_culled = 0;   ///< orphan pairs inside a patch skipped by normal-cone culling
   std::uint64_t restructured = 0;     ///< BVH sub-trees rebuilt by adaptive restructuring
-  std::uint64_t tests_filtered = 0;   ///< elementary tests decided by the tester's certified filter (TestRoute)
-  std::uint64_t tests_fallback = 0;   ///< elementary tests the tester could not decide itself (`conservative`)
-  std::uint64_t contacts_vf = 0;
-  std::uint64_t contacts_ee = 0;
 };
 
 /// Wall-clock milliseconds per phase of one step (data flow of design.md).
@@ -54,7 +44,7 @@ struct StepResult {
   TraversalStats traversal;        ///< the scheduler's counters (front size, serial time, …)
   StepMemory memory;
   std::vector<PhaseTrace> traces;  ///< per-phase task costs, for the schedule simulator
-  /// Filled only when the pipeline records tested pairs (tests of the ownership rule).
+  /// Filled only when the pipeline records gathered feature pairs (tests of the representative rules).
   std::vector<VertexFacePair> tested_vf;
   std::vector<EdgeEdgePair> tested_ee;
 };

@@ -1,6 +1,16 @@
 #include "framework/primitive/feature_pairs.hpp"
 
+#include <algorithm>
+
 namespace ccdlab {
+
+void faces_sharing_a_vertex(const TriMesh& mesh, Index face, std::vector<Index>& ring) {
+  ring.clear();
+  for (Index u : mesh.face(face))
+    for (Index g : mesh.vertex_faces(u)) ring.push_back(g);
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+}
 
 Ownership assign_owners(const TriMesh& mesh) {
   Ownership own;

@@ -44,6 +44,9 @@ struct OrphanSet {
   std::vector<EdgeEdgePair> ee;
 };
 
+/// The faces sharing a vertex with `face` (itself included), sorted, into `ring`.
+void faces_sharing_a_vertex(const TriMesh& mesh, Index face, std::vector<Index>& ring);
+
 /// Builds the orphan set of the faces for which `self_collision(face)` is true (a body with self-collision).
 template <class Pred>
 OrphanSet build_orphan_set(const TriMesh& mesh, const Ownership& own, Pred&& self_collision);

@@ -8,13 +8,7 @@ template <class Pred>
 OrphanSet build_orphan_set(const TriMesh& mesh, const Ownership& own, Pred&& self_collision) {
   OrphanSet orphans;
   std::vector<Index> ring;  // faces adjacent to (sharing a vertex with) the owner face, incl. itself
-  auto faces_around = [&](Index face) {
-    ring.clear();
-    for (Index u : mesh.face(face))
-      for (Index g : mesh.vertex_faces(u)) ring.push_back(g);
-    std::sort(ring.begin(), ring.end());
-    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-  };
+  auto faces_around = [&](Index face) { faces_sharing_a_vertex(mesh, face, ring); };
   for (Index v = 0; v < mesh.num_vertices(); ++v) {
     Index o = own.vertex_owner[v];
     if (o < 0 || !self_collision(o)) continue;

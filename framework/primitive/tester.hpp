@@ -1,11 +1,18 @@
 #pragma once
 // PrimitiveTester: the elementary continuous tests (vertex–face, edge–edge) under linear motion over one
 // step. Implementations form the accuracy ladder (float, filtered, conservative, exact); strategies/testers/.
+#include <optional>
 #include <string_view>
 
 #include "framework/primitive/contact.hpp"
 
 namespace ccdlab {
+
+/// A distance beyond which a tester never reports a hit: abs + rel·L, L = the query's bounding-box diagonal.
+struct CullReach {
+  double abs = 0;
+  double rel = 0;
+};
 
 class PrimitiveTester {
  public:
@@ -15,6 +22,10 @@ class PrimitiveTester {
   [[nodiscard]] virtual double thickness() const = 0;
   [[nodiscard]] virtual CcdHit vertex_face(const VertexFaceQuery& q) const = 0;
   [[nodiscard]] virtual CcdHit edge_edge(const EdgeEdgeQuery& q) const = 0;
+  /// The farthest two features can stay apart over the whole step and still be reported as a hit: the
+  /// promise that lets the batched narrow phase drop pairs proven farther (plane_filter.hpp). None (the
+  /// default) when the tester cannot bound it; the plane stage is then skipped for it.
+  [[nodiscard]] virtual std::optional<CullReach> cull_reach() const { return std::nullopt; }
 };
 
 }  // namespace ccdlab

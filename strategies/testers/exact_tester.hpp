@@ -38,6 +38,8 @@ class ExactTester final : public PrimitiveTester {
   [[nodiscard]] double thickness() const override { return 0.0; }
   [[nodiscard]] CcdHit vertex_face(const VertexFaceQuery& q) const override;
   [[nodiscard]] CcdHit edge_edge(const EdgeEdgeQuery& q) const override;
+  /// Exact contact at zero distance: nothing farther than 0 is ever reported.
+  [[nodiscard]] std::optional<CullReach> cull_reach() const override { return CullReach{0, 0}; }
 
   [[nodiscard]] Decision decide(const VertexFaceQuery& q) const;
   [[nodiscard]] Decision decide(const EdgeEdgeQuery& q) const;

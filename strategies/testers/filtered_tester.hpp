@@ -15,6 +15,7 @@ class FilteredTester final : public PrimitiveTester {
   [[nodiscard]] double thickness() const override { return 0.0; }
   [[nodiscard]] CcdHit vertex_face(const VertexFaceQuery& q) const override;
   [[nodiscard]] CcdHit edge_edge(const EdgeEdgeQuery& q) const override;
+  [[nodiscard]] std::optional<CullReach> cull_reach() const override { return CullReach{0, 2 * FloatTester::rel_tolerance}; }
 
  private:
   FloatTester float_{};

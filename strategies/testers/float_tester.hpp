@@ -23,6 +23,8 @@ class FloatTester final : public PrimitiveTester {
   [[nodiscard]] double thickness() const override { return params_.thickness; }
   [[nodiscard]] CcdHit vertex_face(const VertexFaceQuery& q) const override;
   [[nodiscard]] CcdHit edge_edge(const EdgeEdgeQuery& q) const override;
+  /// Hits are within η + rel_tolerance·L; twice the tolerance absorbs the rounding of the distances computed.
+  [[nodiscard]] std::optional<CullReach> cull_reach() const override { return CullReach{params_.thickness, 2 * rel_tolerance}; }
 
   /// Distance tolerance relative to the query's extent: proximity holds when d ≤ η + rel_tolerance · extent.
   static constexpr double rel_tolerance = 1e-9;

@@ -12,45 +12,14 @@
 
 #include "framework/pipeline/ccd_pipeline.hpp"
 #include "strategies/registry.hpp"
+#include "support/ground_truth.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
 namespace {
 
-nlohmann::json read_json(const std::string& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
-
-struct GroundTruth {
-  std::set<VertexFacePair> vf_true, vf_false;
-  std::set<EdgeEdgePair> ee_true, ee_false;
-};
-
-GroundTruth load_truth(const std::string& root, const TriMesh& mesh) {
-  GroundTruth gt;
-  const std::string base = root + "/ccd-queries/simulation/cloth-funnel/";
-  const long long nv = mesh.num_vertices(), ne = mesh.num_edges();
-  auto vf_ids = read_json(base + "boxes/227vf.json");
-  auto vf_bool = read_json(base + "mma_bool/227vf_mma_bool.json");
-  auto ee_ids = read_json(base + "boxes/227ee.json");
-  auto ee_bool = read_json(base + "mma_bool/227ee_mma_bool.json");
-  EXPECT_EQ(vf_ids.size(), vf_bool.size());
-  EXPECT_EQ(ee_ids.size(), ee_bool.size());
-  for (std::size_t i = 0; i < vf_ids.size(); ++i) {
-    // Ids: vertex v → v, edge e → nV + e, face f → nV + nE + f.
-    long long a = vf_ids[i][0], b = vf_ids[i][1];
-    EXPECT_LT(a, nv);
-    VertexFacePair p{Index(a), Index(b - nv - ne)};
-    (vf_bool[i].get<bool>() ? gt.vf_true : gt.vf_false).insert(p);
-  }
-  for (std::size_t i = 0; i < ee_ids.size(); ++i) {
-    long long a = ee_ids[i][0].get<long long>() - nv, b = ee_ids[i][1].get<long long>() - nv;
-    EdgeEdgePair p{Index(std::min(a, b)), Index(std::max(a, b))};
-    (ee_bool[i].get<bool>() ? gt.ee_true : gt.ee_false).insert(p);
-  }
-  return gt;
-}
+using test::GroundTruth;
+GroundTruth load_truth(const std::string& root, const TriMesh& mesh) { return test::load_truth(root, "cloth-funnel", "227", mesh); }
 
 TEST(FunnelStep, CandidatesIncludeAllCollidingPairsOfTheGroundTruth) {
   const std::string root = test::shared_data();

@@ -66,7 +66,7 @@ TEST(Ownership, FeaturePairsAreTestedExactlyOnceAndNoneIsLost) {
     for (const auto& p : ee) ASSERT_FALSE(shares_vertex(mesh.edge(p.a), mesh.edge(p.b)));
 
     // Exactly the pairs the rule promises: orphans, plus the owned features of every candidate face pair.
-    const Ownership& own = pipeline.owners();
+    const Ownership& own = pipeline.representatives().owners();
     std::set<std::pair<Index, Index>> candidates;
     for (const FacePair& p : pipeline.last_candidates().pairs) candidates.insert({p.a, p.b});
     auto is_candidate = [&](Index f, Index g2) { return candidates.count({std::min(f, g2), std::max(f, g2)}) > 0; };
@@ -100,6 +100,58 @@ TEST(Ownership, FeaturePairsAreTestedExactlyOnceAndNoneIsLost) {
         EXPECT_TRUE(std::binary_search(ee.begin(), ee.end(), EdgeEdgePair{c.feature_a, c.feature_b}));
     }
   }
+}
+
+TEST(Representatives, FirstFreeTestsEveryFeaturePairOnceThroughItsFirstNonAdjacentFacePair) {
+  MeshData g = test::grid(8, 8);
+  TriMesh mesh(Index(g.positions.size()), g.faces);
+  PipelineStrategies s = default_strategies(18);
+  s.narrow.representative = RepresentativeRule::first_free;
+  CcdPipeline pipeline(mesh, single_cloth_body(mesh), std::move(s));
+  pipeline.set_record_tested_pairs(true);
+  std::mt19937 rng(17);
+  Positions x0 = test::crumple(g.positions, rng, 0.02), x1 = x0;
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (Vec3& p : x1) p += 0.12 * Vec3(u(rng), u(rng), u(rng));
+  StepResult r = pipeline.step(x0, x1);
+  auto vf = r.tested_vf;
+  auto ee = r.tested_ee;
+  std::sort(vf.begin(), vf.end());
+  std::sort(ee.begin(), ee.end());
+  EXPECT_EQ(std::adjacent_find(vf.begin(), vf.end()), vf.end()) << "a VF pair was tested twice";
+  EXPECT_EQ(std::adjacent_find(ee.begin(), ee.end()), ee.end()) << "an EE pair was tested twice";
+  std::set<std::pair<Index, Index>> candidates;
+  for (const FacePair& p : pipeline.last_candidates().pairs) candidates.insert({p.a, p.b});
+  auto is_candidate = [&](Index f, Index g2) { return candidates.count({std::min(f, g2), std::max(f, g2)}) > 0; };
+  std::size_t orphans_vf = 0, orphans_ee = 0;
+  for (Index v = 0; v < mesh.num_vertices(); ++v)
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+      if (contains_vertex(mesh.face(f), v)) continue;
+      Index rep = -1;
+      for (Index h : mesh.vertex_faces(v))
+        if (!mesh.faces_adjacent(h, f)) { rep = h; break; }
+      orphans_vf += rep < 0;
+      const bool expect = rep < 0 || is_candidate(rep, f);
+      ASSERT_EQ(std::binary_search(vf.begin(), vf.end(), VertexFacePair{v, f}), expect) << "v " << v << " f " << f;
+    }
+  for (Index a = 0; a < mesh.num_edges(); ++a)
+    for (Index b = a + 1; b < mesh.num_edges(); ++b) {
+      if (shares_vertex(mesh.edge(a), mesh.edge(b))) continue;
+      std::pair<Index, Index> rep{-1, -1};
+      for (Index fa : mesh.edge_faces(a)) {
+        for (Index fb : mesh.edge_faces(b))
+          if (!mesh.faces_adjacent(fa, fb)) { rep = {fa, fb}; break; }
+        if (rep.first >= 0) break;
+      }
+      orphans_ee += rep.first < 0;
+      const bool expect = rep.first < 0 || is_candidate(rep.first, rep.second);
+      ASSERT_EQ(std::binary_search(ee.begin(), ee.end(), EdgeEdgePair{a, b}), expect) << "a " << a << " b " << b;
+    }
+  EXPECT_EQ(pipeline.orphans().vf.size(), orphans_vf);
+  EXPECT_EQ(pipeline.orphans().ee.size(), orphans_ee);
+  // Far fewer orphans than the fixed rule's (a grid: only around the corners and borders).
+  const OrphanSet fixed = build_orphan_set(mesh, assign_owners(mesh), [](Index) { return true; });
+  EXPECT_LT(orphans_vf + orphans_ee, (fixed.vf.size() + fixed.ee.size()) / 4);
 }
 
 TEST(OrphanSet, CoversExactlyThePairsOfAdjacentOwners) {

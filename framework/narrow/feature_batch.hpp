@@ -1,0 +1,28 @@
+#pragma once
+// A batch of feature pairs on its way through the narrow phase: gathered from candidate face pairs (or the
+// orphan set), then compacted in place by each culling stage.
+#include <cstdint>
+#include <vector>
+
+#include "framework/narrow/plane_filter.hpp"
+#include "framework/primitive/feature_pairs.hpp"
+
+namespace ccdlab {
+
+struct FeatureBatch {
+  std::vector<VertexFacePair> vf;
+  std::vector<EdgeEdgePair> ee;
+  void clear() {
+    vf.clear();
+    ee.clear();
+  }
+};
+
+/// Per-thread working memory of the narrow phase, reused from chunk to chunk (no allocation in steady state).
+struct NarrowScratch {
+  FeatureBatch batch;
+  PlaneBatch plane;
+  std::vector<std::uint8_t> keep;
+};
+
+}  // namespace ccdlab

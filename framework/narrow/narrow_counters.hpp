@@ -1,0 +1,41 @@
+#pragma once
+// The work of the narrow phase, counted per stage (design.md: gather → cull → test → scatter). One home for the
+// merge of per-thread counters: operator+=.
+#include <cstdint>
+
+namespace ccdlab {
+
+struct NarrowCounters {
+  std::uint64_t vf_pairs = 0;        ///< vertex–face feature pairs gathered (candidates' representatives + orphans)
+  std::uint64_t ee_pairs = 0;        ///< edge–edge feature pairs gathered
+  std::uint64_t orphan_vf = 0;       ///< of which from the orphan set
+  std::uint64_t orphan_ee = 0;
+  std::uint64_t orphans_culled = 0;  ///< orphan pairs inside a patch skipped by normal-cone culling
+  std::uint64_t kdop_culled = 0;     ///< pairs whose swept feature 26-DOPs are disjoint (stage 1, every mode)
+  std::uint64_t plane_culled = 0;    ///< pairs proven to stay off each other's plane/line (stage 2, batched only)
+  std::uint64_t vf_tests = 0;        ///< elementary VF tests run (survivors of the culling stages)
+  std::uint64_t ee_tests = 0;        ///< elementary EE tests run
+  std::uint64_t orphan_tests = 0;    ///< of the VF + EE tests, those from the orphan set
+  std::uint64_t tests_filtered = 0;  ///< elementary tests decided by the tester's own certified filter (TestRoute)
+  std::uint64_t tests_fallback = 0;  ///< elementary tests the tester could not decide itself (`conservative`)
+  std::uint64_t contacts_vf = 0;
+  std::uint64_t contacts_ee = 0;
+  // Thread-time per stage, nanoseconds summed over threads (batched mode; scalar mode interleaves them and
+  // reports all of it as test_ns).
+  std::uint64_t gather_ns = 0;  ///< feature pairs of candidate face pairs (representative rule)
+  std::uint64_t kdop_ns = 0;    ///< stage 1
+  std::uint64_t plane_ns = 0;   ///< stage 2 (staging the coordinates included)
+  std::uint64_t test_ns = 0;    ///< elementary tests and contact records
+
+  NarrowCounters& operator+=(const NarrowCounters& o) {
+    vf_pairs += o.vf_pairs, ee_pairs += o.ee_pairs, orphan_vf += o.orphan_vf, orphan_ee += o.orphan_ee;
+    orphans_culled += o.orphans_culled, kdop_culled += o.kdop_culled, plane_culled += o.plane_culled;
+    vf_tests += o.vf_tests, ee_tests += o.ee_tests, orphan_tests += o.orphan_tests;
+    tests_filtered += o.tests_filtered, tests_fallback += o.tests_fallback;
+    contacts_vf += o.contacts_vf, contacts_ee += o.contacts_ee;
+    gather_ns += o.gather_ns, kdop_ns += o.kdop_ns, plane_ns += o.plane_ns, test_ns += o.test_ns;
+    return *this;
+  }
+};
+
+}  // namespace ccdlab

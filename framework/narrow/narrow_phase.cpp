@@ -1,0 +1,157 @@
+#include "framework/narrow/narrow_phase.hpp"
+
+#include <chrono>
+
+#include "framework/util/error.hpp"
+
+namespace ccdlab {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+std::uint64_t ns_since(Clock::time_point t) {
+  return std::uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t).count());
+}
+
+/// Keeps the pairs whose keep flag is set (VF flags first, then EE), in order.
+void compact(FeatureBatch& batch, const std::vector<std::uint8_t>& keep) {
+  std::size_t i = 0;
+  std::erase_if(batch.vf, [&](const VertexFacePair&) { return !keep[i++]; });
+  std::erase_if(batch.ee, [&](const EdgeEdgePair&) { return !keep[i++]; });
+}
+
+}  // namespace
+
+std::string_view to_string(NarrowMode m) { return m == NarrowMode::scalar ? "scalar" : "batched"; }
+
+NarrowMode parse_narrow_mode(std::string_view name) {
+  if (name == "scalar") return NarrowMode::scalar;
+  if (name == "batched") return NarrowMode::batched;
+  fail("narrow.mode: expected 'scalar' or 'batched', got '{}'", name);
+}
+
+void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, int threads, PhaseTrace& trace) {
+  x_t0_ = &x_t0;
+  x_t1_ = &x_t1;
+  bounds_.update(x_t0, x_t1, tester_.thickness(), threads, trace);
+}
+
+void NarrowPhase::gather(std::span<const FacePair> candidates, FeatureBatch& batch) const {
+  for (const FacePair& p : candidates)
+    reps_.for_each_pair(
+        p.a, p.b, [&](Index v, Index f) { batch.vf.push_back({v, f}); },
+        [&](Index a, Index b) { batch.ee.push_back({a, b}); });
+}
+
+VertexFaceQuery NarrowPhase::vf_query(Index v, Index f) const {
+  const Face& t = mesh_.face(f);
+  const Positions &x0 = *x_t0_, &x1 = *x_t1_;
+  return {x0[v], x0[t[0]], x0[t[1]], x0[t[2]], x1[v], x1[t[0]], x1[t[1]], x1[t[2]]};
+}
+
+EdgeEdgeQuery NarrowPhase::ee_query(Index a, Index b) const {
+  const Edge &ea = mesh_.edge(a), &eb = mesh_.edge(b);
+  const Positions &x0 = *x_t0_, &x1 = *x_t1_;
+  return {x0[ea[0]], x0[ea[1]], x0[eb[0]], x0[eb[1]], x1[ea[0]], x1[ea[1]], x1[eb[0]], x1[eb[1]]};
+}
+
+void NarrowPhase::run(NarrowScratch& scratch, std::vector<Contact>& out, NarrowCounters& c, bool cull) const {
+  FeatureBatch& batch = scratch.batch;
+  c.vf_pairs += batch.vf.size();
+  c.ee_pairs += batch.ee.size();
+  if (options_.mode == NarrowMode::scalar) {
+    // One pair at a time: the 26-DOP test, then the tester.
+    const auto t = Clock::now();
+    for (const VertexFacePair& p : batch.vf) {
+      if (cull && !bounds_.vf_may_touch(p.v, mesh_.face(p.f))) {
+        ++c.kdop_culled;
+        continue;
+      }
+      test_vf(p.v, p.f, out, c);
+    }
+    for (const EdgeEdgePair& p : batch.ee) {
+      if (cull && !bounds_.ee_may_touch(mesh_.edge(p.a), mesh_.edge(p.b))) {
+        ++c.kdop_culled;
+        continue;
+      }
+      test_ee(p.a, p.b, out, c);
+    }
+    c.test_ns += ns_since(t);
+    return;
+  }
+  if (cull) {
+    cull_kdop(scratch, c);
+    if (const auto reach = tester_.cull_reach()) cull_plane(scratch, *reach, c);
+  }
+  test(batch, out, c);
+}
+
+void NarrowPhase::cull_kdop(NarrowScratch& scratch, NarrowCounters& c) const {
+  const auto t = Clock::now();
+  FeatureBatch& batch = scratch.batch;
+  const std::size_t nvf = batch.vf.size(), n = nvf + batch.ee.size();
+  scratch.keep.resize(n);
+  bounds_.vf_keep(mesh_, batch.vf, scratch.keep.data());
+  bounds_.ee_keep(mesh_, batch.ee, scratch.keep.data() + nvf);
+  compact(batch, scratch.keep);
+  c.kdop_culled += n - batch.vf.size() - batch.ee.size();
+  c.kdop_ns += ns_since(t);
+}
+
+void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCounters& c) const {
+  const auto t = Clock::now();
+  FeatureBatch& batch = scratch.batch;
+  const std::size_t nvf = batch.vf.size(), n = nvf + batch.ee.size();
+  if (n == 0) return;
+  PlaneBatch& plane = scratch.plane;
+  plane.resize(n);
+  const Positions &x0 = *x_t0_, &x1 = *x_t1_;
+  for (std::size_t i = 0; i < nvf; ++i) {
+    const Index v = batch.vf[i].v;
+    const Face& f = mesh_.face(batch.vf[i].f);
+    const Vec3 &p0 = x0[v], &a0 = x0[f[0]], &b0 = x0[f[1]], &c0 = x0[f[2]];
+    const Vec3 &p1 = x1[v], &a1 = x1[f[0]], &b1 = x1[f[1]], &c1 = x1[f[2]];
+    plane.set(i, p0 - a0, p1 - a1, b0 - a0, b1 - a1, c0 - a0, c1 - a1, a1 - a0);
+  }
+  for (std::size_t i = nvf; i < n; ++i) {
+    const Edge &ea = mesh_.edge(batch.ee[i - nvf].a), &eb = mesh_.edge(batch.ee[i - nvf].b);
+    const Vec3 &a0 = x0[ea[0]], &a1 = x0[ea[1]], &b0 = x0[eb[0]], &b1 = x0[eb[1]];
+    const Vec3 &a0e = x1[ea[0]], &a1e = x1[ea[1]], &b0e = x1[eb[0]], &b1e = x1[eb[1]];
+    plane.set(i, b0 - a0, b0e - a0e, a1 - a0, a1e - a0e, b1 - b0, b1e - b0e, a0e - a0);
+  }
+  scratch.keep.resize(n);
+  plane_filter(plane, reach, scratch.keep.data());
+  compact(batch, scratch.keep);
+  c.plane_culled += n - batch.vf.size() - batch.ee.size();
+  c.plane_ns += ns_since(t);
+}
+
+void NarrowPhase::test(const FeatureBatch& batch, std::vector<Contact>& out, NarrowCounters& c) const {
+  const auto t = Clock::now();
+  for (const VertexFacePair& p : batch.vf) test_vf(p.v, p.f, out, c);
+  for (const EdgeEdgePair& p : batch.ee) test_ee(p.a, p.b, out, c);
+  c.test_ns += ns_since(t);
+}
+
+void NarrowPhase::test_vf(Index v, Index f, std::vector<Contact>& out, NarrowCounters& c) const {
+  ++c.vf_tests;
+  const CcdHit hit = tester_.vertex_face(vf_query(v, f));
+  c.tests_filtered += hit.route == TestRoute::filter;
+  c.tests_fallback += hit.route == TestRoute::fallback;
+  if (!hit.hit) return;
+  ++c.contacts_vf;
+  const Face& t = mesh_.face(f);
+  out.push_back(Contact{ContactKind::vf, v, f, {v, t[0], t[1], t[2]}, hit.toi, hit.coords});
+}
+
+void NarrowPhase::test_ee(Index a, Index b, std::vector<Contact>& out, NarrowCounters& c) const {
+  ++c.ee_tests;
+  const CcdHit hit = tester_.edge_edge(ee_query(a, b));
+  c.tests_filtered += hit.route == TestRoute::filter;
+  c.tests_fallback += hit.route == TestRoute::fallback;
+  if (!hit.hit) return;
+  ++c.contacts_ee;
+  const Edge &ea = mesh_.edge(a), &eb = mesh_.edge(b);
+  out.push_back(Contact{ContactKind::ee, a, b, {ea[0], ea[1], eb[0], eb[1]}, hit.toi, hit.coords});
+}
+
+}  // namespace ccdlab

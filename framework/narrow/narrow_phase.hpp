@@ -1,0 +1,74 @@
+#pragma once
+// The narrow phase of one step, one stage of its own (design.md): candidate face pairs → feature pairs →
+// culling → elementary tests → contacts. Nothing below the pipeline depends on it.
+//
+//   gather   the feature pairs each candidate represents (representatives.hpp), or a chunk of orphans
+//   stage 1  swept feature 26-DOPs overlap (feature_bounds.hpp, SIMD)     every mode; defines the contact set
+//   stage 2  certified plane test, SIMD over the batch (plane_filter.hpp)   batched mode, testers with a reach
+//   test     the PrimitiveTester on the survivors; hits become contacts
+//
+// `scalar` mode runs stage 1 and the test pair by pair, as a student would write it; `batched` runs each
+// stage over the whole batch. Both report the same contacts (the stages are exact; tests/framework/narrow/).
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "framework/narrow/feature_batch.hpp"
+#include "framework/narrow/feature_bounds.hpp"
+#include "framework/narrow/narrow_counters.hpp"
+#include "framework/narrow/representatives.hpp"
+#include "framework/primitive/tester.hpp"
+#include "framework/traversal/candidates.hpp"
+
+namespace ccdlab {
+
+enum class NarrowMode { scalar, batched };
+[[nodiscard]] std::string_view to_string(NarrowMode m);
+/// "scalar" | "batched"; throws Error naming the valid values otherwise.
+[[nodiscard]] NarrowMode parse_narrow_mode(std::string_view name);
+
+struct NarrowOptions {
+  NarrowMode mode = NarrowMode::batched;
+  RepresentativeRule representative = RepresentativeRule::fixed;  // measured faster with batched culling (docs/performance.md)
+};
+
+class NarrowPhase {
+ public:
+  /// `self_collision(face)`: whether the face's body collides with itself (orphan sets exist only there).
+  template <class Pred>
+  NarrowPhase(const TriMesh& mesh, const PrimitiveTester& tester, NarrowOptions options, Pred&& self_collision)
+      : mesh_(mesh), tester_(tester), options_(options), reps_(mesh, options.representative, self_collision) {}
+
+  [[nodiscard]] const NarrowOptions& options() const { return options_; }
+  [[nodiscard]] const Representatives& representatives() const { return reps_; }
+
+  /// Sets the two frames of the step and bounds every feature over it (stage 1's 26-DOPs).
+  void begin_step(const Positions& x_t0, const Positions& x_t1, int threads, PhaseTrace& trace);
+
+  /// Appends the feature pairs the candidates represent to `batch`.
+  void gather(std::span<const FacePair> candidates, FeatureBatch& batch) const;
+  /// Culls and tests the pairs of `batch` (consumed: it holds the survivors afterwards); appends contacts.
+  /// `cull = false` skips the culling stages (brute-force references).
+  void run(NarrowScratch& scratch, std::vector<Contact>& out, NarrowCounters& c, bool cull = true) const;
+
+  [[nodiscard]] VertexFaceQuery vf_query(Index v, Index f) const;
+  [[nodiscard]] EdgeEdgeQuery ee_query(Index a, Index b) const;
+  [[nodiscard]] std::size_t memory_bytes() const { return bounds_.memory_bytes(); }
+
+ private:
+  void cull_kdop(NarrowScratch& scratch, NarrowCounters& c) const;
+  void cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCounters& c) const;
+  void test(const FeatureBatch& batch, std::vector<Contact>& out, NarrowCounters& c) const;
+  void test_vf(Index v, Index f, std::vector<Contact>& out, NarrowCounters& c) const;
+  void test_ee(Index a, Index b, std::vector<Contact>& out, NarrowCounters& c) const;
+
+  const TriMesh& mesh_;
+  const PrimitiveTester& tester_;
+  NarrowOptions options_;
+  Representatives reps_;
+  FeatureBounds bounds_;
+  const Positions* x_t0_ = nullptr;
+  const Positions* x_t1_ = nullptr;
+};
+
+}  // namespace ccdlab

@@ -1,0 +1,57 @@
+#include "framework/narrow/representatives.hpp"
+
+#include <algorithm>
+
+#include "framework/util/error.hpp"
+
+namespace ccdlab {
+
+std::string_view to_string(RepresentativeRule r) { return r == RepresentativeRule::fixed ? "fixed" : "first_free"; }
+
+RepresentativeRule parse_representative_rule(std::string_view name) {
+  if (name == "fixed") return RepresentativeRule::fixed;
+  if (name == "first_free") return RepresentativeRule::first_free;
+  fail("narrow.representative: expected 'fixed' or 'first_free', got '{}'", name);
+}
+
+Index Representatives::face_of_vertex(Index v) const {
+  return rule_ == RepresentativeRule::fixed ? owners_.vertex_owner[v] : mesh_.vertex_faces(v)[0];
+}
+Index Representatives::face_of_edge(Index e) const {
+  return rule_ == RepresentativeRule::fixed ? owners_.edge_owner[e] : mesh_.edge_faces(e)[0];
+}
+
+OrphanSet Representatives::build_first_free_orphans(const std::vector<bool>& self) const {
+  // An orphan's faces are all adjacent to the first face of its first feature, so the candidates for the
+  // second feature are the features of that face's neighbours (faces sharing a vertex with it).
+  OrphanSet orphans;
+  std::vector<Index> ring;
+  auto faces_around = [&](Index face) { faces_sharing_a_vertex(mesh_, face, ring); };
+  for (Index v = 0; v < mesh_.num_vertices(); ++v) {
+    if (mesh_.vertex_faces(v).empty() || !self[mesh_.vertex_faces(v)[0]]) continue;
+    faces_around(mesh_.vertex_faces(v)[0]);
+    for (Index f : ring)
+      if (!contains_vertex(mesh_.face(f), v) && first_free_face(v, f) < 0) orphans.vf.push_back({v, f});
+  }
+  std::vector<Index> edges;
+  for (Index a = 0; a < mesh_.num_edges(); ++a) {
+    if (!self[mesh_.edge_faces(a)[0]]) continue;
+    faces_around(mesh_.edge_faces(a)[0]);
+    edges.clear();
+    for (Index g : ring)
+      for (Index b : mesh_.face_edges(g))
+        if (b > a) edges.push_back(b);
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    for (Index b : edges) {
+      if (shares_vertex(mesh_.edge(a), mesh_.edge(b))) continue;
+      bool all_adjacent = true;
+      for (Index g : mesh_.edge_faces(a))
+        for (Index h : mesh_.edge_faces(b)) all_adjacent &= adjacent(g, h);
+      if (all_adjacent) orphans.ee.push_back({a, b});
+    }
+  }
+  return orphans;
+}
+
+}  // namespace ccdlab

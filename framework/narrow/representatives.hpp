@@ -1,0 +1,140 @@
+#pragma once
+// Which candidate face pair tests a feature pair: the representative rule (design.md, "gather").
+//
+// `fixed` (primitive/feature_pairs.hpp, Tang et al. 2009): every vertex and edge has one owner face; (v, f) is
+// tested by the candidate (owner(v), f). When the owner is adjacent to f, the traversal never reports that
+// face pair, so the pair is an orphan, tested every step: on a tangled 146K-triangle step, ~10^6 of them.
+//
+// `first_free` (what the ICCD release does at test time): (v, f) is tested by (g, f), g the FIRST face around v,
+// in the mesh's vertex_faces order, that is not adjacent to f; (a, b), a < b, by the first non-adjacent (g, h)
+// of edge_faces(a) × edge_faces(b) in lexicographic order. Only pairs whose every incident face pair is
+// adjacent are orphans: a few per vertex of high valence. Exactly once: a feature pair has one first face
+// pair, and the traversal reports each candidate once. None lost: a pair that passes stage 1
+// (feature_bounds.hpp) has overlapping leaves for EVERY incident face pair, so its first non-adjacent one is a
+// candidate; normal-cone culling drops a candidate only inside one skipped patch, where no two non-adjacent
+// features can touch (traversal/normal_cones.hpp).
+#include <span>
+#include <string_view>
+
+#include "framework/mesh/tri_mesh.hpp"
+#include "framework/primitive/feature_pairs.hpp"
+
+namespace ccdlab {
+
+enum class RepresentativeRule { fixed, first_free };
+[[nodiscard]] std::string_view to_string(RepresentativeRule r);
+/// "fixed" | "first_free"; throws Error naming the valid values otherwise.
+[[nodiscard]] RepresentativeRule parse_representative_rule(std::string_view name);
+
+class Representatives {
+ public:
+  /// `self_collision(face)`: whether the face's body collides with itself (orphans exist only there).
+  template <class Pred>
+  Representatives(const TriMesh& mesh, RepresentativeRule rule, Pred&& self_collision);
+
+  [[nodiscard]] RepresentativeRule rule() const { return rule_; }
+  [[nodiscard]] const Ownership& owners() const { return owners_; }
+  [[nodiscard]] const OrphanSet& orphans() const { return orphans_; }
+  /// A face incident to the vertex / edge, used to place an orphan in a normal-cone patch.
+  [[nodiscard]] Index face_of_vertex(Index v) const;
+  [[nodiscard]] Index face_of_edge(Index e) const;
+
+  /// Appends the feature pairs that the non-adjacent candidate (fa, fb) represents.
+  template <class OnVf, class OnEe>
+  void for_each_pair(Index fa, Index fb, OnVf&& on_vf, OnEe&& on_ee) const;
+
+ private:
+  [[nodiscard]] bool adjacent(Index f, Index g) const {
+    const Face &a = mesh_.face(f), &b = mesh_.face(g);
+    bool shared = false;
+    for (Index u : a) shared |= (u == b[0]) | (u == b[1]) | (u == b[2]);
+    return shared;
+  }
+  /// first_free: the face pair that represents (v, f) / (a, b) with a < b, or -1 when every one is adjacent.
+  [[nodiscard]] Index first_free_face(Index v, Index f) const {
+    for (Index g : mesh_.vertex_faces(v))
+      if (!adjacent(g, f)) return g;
+    return -1;
+  }
+  [[nodiscard]] bool first_free_is(Index a, Index b, Index fa, Index fb) const {
+    for (Index g : mesh_.edge_faces(a))
+      for (Index h : mesh_.edge_faces(b))
+        if (!adjacent(g, h)) return g == fa && h == fb;
+    return false;
+  }
+  OrphanSet build_first_free_orphans(const std::vector<bool>& self) const;
+  /// first_free, fast path: whether candidate face `fa` (v is its corner j) represents (v, fb). Most answers
+  /// need no walk: fa comes first around v (rank 0), or the first face around v is already free of fb.
+  [[nodiscard]] bool represents_vf(Index fa, int j, Index v, Index fb) const {
+    if (corner_rank_[3 * std::size_t(fa) + j] == 0) return true;
+    if (!adjacent(mesh_.vertex_faces(v)[0], fb)) return false;
+    return first_free_face(v, fb) == fa;
+  }
+  /// first_free, fast path for edges x < y of the candidate faces fx, fy (edge slots i, j of those faces).
+  [[nodiscard]] bool represents_ee(Index x, Index fx, int i, Index y, Index fy, int j) const {
+    if (edge_rank_[3 * std::size_t(fx) + i] == 0 && edge_rank_[3 * std::size_t(fy) + j] == 0) return true;
+    if (!adjacent(mesh_.edge_faces(x)[0], mesh_.edge_faces(y)[0])) return false;
+    return first_free_is(x, y, fx, fy);
+  }
+
+  const TriMesh& mesh_;
+  RepresentativeRule rule_;
+  Ownership owners_;  ///< fixed rule only
+  // first_free only: position of face f in vertex_faces(face(f)[j]) / edge_faces(face_edges(f)[j]), per corner
+  // (3 per face), capped at 255 (only 0 matters).
+  std::vector<std::uint8_t> corner_rank_;
+  std::vector<std::uint8_t> edge_rank_;
+  OrphanSet orphans_;
+};
+
+template <class Pred>
+Representatives::Representatives(const TriMesh& mesh, RepresentativeRule rule, Pred&& self_collision)
+    : mesh_(mesh), rule_(rule) {
+  if (rule_ == RepresentativeRule::fixed) {
+    owners_ = assign_owners(mesh);
+    orphans_ = build_orphan_set(mesh, owners_, self_collision);
+  } else {
+    corner_rank_.assign(3 * std::size_t(mesh.num_faces()), 255);
+    edge_rank_.assign(3 * std::size_t(mesh.num_faces()), 255);
+    for (Index f = 0; f < mesh.num_faces(); ++f)
+      for (int j = 0; j < 3; ++j) {
+        const auto around = mesh.vertex_faces(mesh.face(f)[j]);
+        const auto sides = mesh.edge_faces(mesh.face_edges(f)[j]);
+        for (std::size_t r = 0; r < around.size() && r < 255; ++r)
+          if (around[r] == f) corner_rank_[3 * std::size_t(f) + j] = std::uint8_t(r);
+        for (std::size_t r = 0; r < sides.size() && r < 255; ++r)
+          if (sides[r] == f) edge_rank_[3 * std::size_t(f) + j] = std::uint8_t(r);
+      }
+    std::vector<bool> self(mesh.num_faces());
+    for (Index f = 0; f < mesh.num_faces(); ++f) self[f] = self_collision(f);
+    orphans_ = build_first_free_orphans(self);
+  }
+}
+
+template <class OnVf, class OnEe>
+void Representatives::for_each_pair(Index fa, Index fb, OnVf&& on_vf, OnEe&& on_ee) const {
+  const Face &ta = mesh_.face(fa), &tb = mesh_.face(fb);
+  const auto &ea = mesh_.face_edges(fa), &eb = mesh_.face_edges(fb);
+  if (rule_ == RepresentativeRule::fixed) {
+    const std::uint8_t ma = owners_.owned_mask[fa], mb = owners_.owned_mask[fb];
+    for (int j = 0; j < 3; ++j) {
+      if (ma & (1u << j)) on_vf(ta[j], fb);
+      if (mb & (1u << j)) on_vf(tb[j], fa);
+    }
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if ((ma & (8u << i)) && (mb & (8u << j))) on_ee(std::min(ea[i], eb[j]), std::max(ea[i], eb[j]));
+    return;
+  }
+  for (int j = 0; j < 3; ++j) {
+    if (represents_vf(fa, j, ta[j], fb)) on_vf(ta[j], fb);
+    if (represents_vf(fb, j, tb[j], fa)) on_vf(tb[j], fa);
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const Index a = ea[i], b = eb[j];
+      if (a < b ? represents_ee(a, fa, i, b, fb, j) : represents_ee(b, fb, j, a, fa, i)) on_ee(std::min(a, b), std::max(a, b));
+    }
+}
+
+}  // namespace ccdlab

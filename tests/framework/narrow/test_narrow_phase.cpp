@@ -1,0 +1,177 @@
+// The batched narrow phase: its SIMD kernels agree with their plain versions on every SIMD target this machine
+// can run (the scalar EMU128 target forced included), its culling stages never drop a pair the tester reports,
+// and every mode and representative rule reports the same contacts.
+#include <gtest/gtest.h>
+
+#include <hwy/targets.h>
+
+#include <array>
+#include <random>
+#include <set>
+
+#include "framework/narrow/narrow_phase.hpp"
+#include "framework/pipeline/brute_force.hpp"
+#include "framework/pipeline/ccd_pipeline.hpp"
+#include "strategies/registry.hpp"
+#include "strategies/testers/float_tester.hpp"
+#include "support/test_meshes.hpp"
+
+namespace ccdlab {
+namespace {
+
+/// Runs f once per SIMD target compiled in and supported here, with that target forced; then restores.
+template <class F>
+void for_each_simd_target(F&& f) {
+  const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+  ASSERT_FALSE(targets.empty());
+  for (std::int64_t t : targets) {
+    hwy::SetSupportedTargetsForTest(t);
+    f(hwy::TargetName(t));
+  }
+  hwy::SetSupportedTargetsForTest(0);
+}
+
+/// Random moving pairs near each other at every scale, some exactly coplanar throughout, some degenerate.
+PlaneBatch random_plane_batch(std::size_t n, std::mt19937& rng) {
+  PlaneBatch b;
+  b.resize(n);
+  std::uniform_real_distribution<double> u(-1, 1), e(-6, 6);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double s = std::pow(10.0, e(rng));
+    auto v = [&]() -> Vec3 { return Vec3(u(rng), u(rng), u(rng)) * s; };
+    std::array<Vec3, 7> p;
+    for (Vec3& q : p) q = v();
+    if (i % 7 == 0)  // coplanar motion: f ≡ 0
+      for (int k = 0; k < 6; ++k) p[k].z() = 0;
+    if (i % 11 == 0) {  // degenerate: B ∥ C
+      p[4] = 2 * p[2];
+      p[5] = 2 * p[3];
+    }
+    b.set(i, p[0], p[1], p[2], p[3], p[4], p[5], p[6]);
+  }
+  return b;
+}
+
+TEST(PlaneFilter, EverySimdTargetAgreesWithThePlainVersion) {
+  std::mt19937 rng(3);
+  const PlaneBatch batch = random_plane_batch(5003, rng);
+  for (CullReach reach : {CullReach{0, 0}, CullReach{0, 2e-9}, CullReach{1e-3, 2e-9}}) {
+    std::vector<std::uint8_t> expect(batch.size());
+    std::size_t culled = 0;
+    for (std::size_t i = 0; i < batch.size(); ++i) culled += !(expect[i] = plane_filter_keeps(batch, i, reach));
+    EXPECT_GT(culled, batch.size() / 20);  // the test means something: many pairs are culled
+    for_each_simd_target([&](const char* target) {
+      std::vector<std::uint8_t> keep(batch.size(), 7);
+      plane_filter(batch, reach, keep.data());
+      EXPECT_EQ(keep, expect) << target;
+    });
+  }
+}
+
+TEST(PlaneFilter, NeverDropsAPairTheFloatTesterReports) {
+  // Random VF and EE queries in near contact (at thickness 0 and > 0): whatever the tester reports as a hit,
+  // the filter keeps, at the reach the tester declares.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (double eta : {0.0, 0.02}) {
+    FloatTester tester(FloatTester::Params{eta});
+    const CullReach reach = *tester.cull_reach();
+    int hits = 0, culled = 0;
+    for (int i = 0; i < 20000; ++i) {
+      auto p = [&] { return Vec3(u(rng), u(rng), 0.1 * u(rng)); };
+      VertexFaceQuery q{p(), p(), p(), p(), p(), p(), p(), p()};
+      EdgeEdgeQuery r{p(), p(), p(), p(), p(), p(), p(), p()};
+      PlaneBatch b;
+      b.resize(2);
+      b.set(0, q.v_t0 - q.f0_t0, q.v_t1 - q.f0_t1, q.f1_t0 - q.f0_t0, q.f1_t1 - q.f0_t1, q.f2_t0 - q.f0_t0,
+            q.f2_t1 - q.f0_t1, q.f0_t1 - q.f0_t0);
+      b.set(1, r.eb0_t0 - r.ea0_t0, r.eb0_t1 - r.ea0_t1, r.ea1_t0 - r.ea0_t0, r.ea1_t1 - r.ea0_t1,
+            r.eb1_t0 - r.eb0_t0, r.eb1_t1 - r.eb0_t1, r.ea0_t1 - r.ea0_t0);
+      std::uint8_t keep[2];
+      plane_filter(b, reach, keep);
+      const bool hit_vf = tester.vertex_face(q).hit, hit_ee = tester.edge_edge(r).hit;
+      hits += hit_vf + hit_ee;
+      culled += !keep[0] + !keep[1];
+      if (hit_vf) {
+        ASSERT_TRUE(keep[0]) << "eta " << eta << " query " << i;
+      }
+      if (hit_ee) {
+        ASSERT_TRUE(keep[1]) << "eta " << eta << " query " << i;
+      }
+    }
+    EXPECT_GT(hits, 1000);
+    EXPECT_GT(culled, 1000);
+  }
+}
+
+TEST(FeatureBounds, SimdKeepAgreesWithThePlainVersionOnEveryTarget) {
+  MeshData g = test::grid(12, 12);
+  TriMesh mesh(Index(g.positions.size()), g.faces);
+  std::mt19937 rng(5);
+  Positions x0 = test::crumple(g.positions, rng, 0.05), x1 = test::crumple(g.positions, rng, 0.05);
+  FeatureBounds bounds;
+  PhaseTrace trace;
+  bounds.update(x0, x1, 0.01, 1, trace);
+  std::vector<VertexFacePair> vf;
+  std::vector<EdgeEdgePair> ee;
+  for (Index v = 0; v < mesh.num_vertices(); ++v)
+    for (Index f = 0; f < mesh.num_faces(); ++f)
+      if (!contains_vertex(mesh.face(f), v)) vf.push_back({v, f});
+  for (Index a = 0; a < mesh.num_edges(); ++a)
+    for (Index b = a + 1; b < mesh.num_edges(); ++b)
+      if (!shares_vertex(mesh.edge(a), mesh.edge(b))) ee.push_back({a, b});
+  std::vector<std::uint8_t> expect_vf, expect_ee;
+  for (const auto& p : vf) expect_vf.push_back(bounds.vf_may_touch(p.v, mesh.face(p.f)));
+  for (const auto& p : ee) expect_ee.push_back(bounds.ee_may_touch(mesh.edge(p.a), mesh.edge(p.b)));
+  const auto kept = std::count(expect_vf.begin(), expect_vf.end(), 1) + std::count(expect_ee.begin(), expect_ee.end(), 1);
+  EXPECT_GT(kept, 100);
+  EXPECT_LT(std::size_t(kept), (vf.size() + ee.size()) / 2);
+  for_each_simd_target([&](const char* target) {
+    std::vector<std::uint8_t> keep_vf(vf.size()), keep_ee(ee.size());
+    bounds.vf_keep(mesh, vf, keep_vf.data());
+    bounds.ee_keep(mesh, ee, keep_ee.data());
+    EXPECT_EQ(keep_vf, expect_vf) << target;
+    EXPECT_EQ(keep_ee, expect_ee) << target;
+  });
+}
+
+PipelineStrategies strategies(const char* tester, NarrowOptions narrow, int k, int threads) {
+  PipelineStrategies s;
+  s.k = k;
+  s.threads = threads;
+  s.narrow = narrow;
+  s.builder = builder_registry().make({"median", {}});
+  s.scheduler = scheduler_registry().make({"front", scheduler_registry().find("front")->defaults()});
+  s.tester = tester_registry().make({tester, tester_registry().find(tester)->defaults()});
+  return s;
+}
+
+TEST(NarrowModes, EveryModeRuleTargetAndKReportsTheSameContactsAsBruteForce) {
+  MeshData g = test::grid(10, 10);
+  TriMesh mesh(Index(g.positions.size()), g.faces);
+  std::mt19937 rng(9);
+  for (const char* tester : {"float", "filtered", "conservative"}) {
+    Positions x0 = test::crumple(g.positions, rng, 0.03), x1 = x0;
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (Vec3& p : x1) p += 0.1 * Vec3(u(rng), u(rng), u(rng));
+    CollisionRules rules(mesh, single_cloth_body(mesh));
+    auto reference = brute_force_contacts(mesh, rules, x0, x1, *strategies(tester, {}, 18, 1).tester, true);
+    ASSERT_GT(reference.size(), 5u) << tester;
+    const std::uint64_t expect = contact_set_hash(reference);
+    for (auto mode : {NarrowMode::scalar, NarrowMode::batched})
+      for (auto rule : {RepresentativeRule::fixed, RepresentativeRule::first_free})
+        for (int k : {6, 14, 18, 26}) {
+          CcdPipeline pipeline(mesh, single_cloth_body(mesh), strategies(tester, {mode, rule}, k, 1 + k % 3));
+          const StepResult r = pipeline.step(x0, x1);
+          EXPECT_EQ(contact_set_hash(r.contacts), expect)
+              << tester << " " << to_string(mode) << "/" << to_string(rule) << " K=" << k;
+        }
+    for_each_simd_target([&](const char* target) {
+      CcdPipeline pipeline(mesh, single_cloth_body(mesh), strategies(tester, {}, 18, 2));
+      EXPECT_EQ(contact_set_hash(pipeline.step(x0, x1).contacts), expect) << tester << " on " << target;
+    });
+  }
+}
+
+}  // namespace
+}  // namespace ccdlab
