@@ -81,9 +81,11 @@ const TesterRegistry& tester_registry() {
                  p.real("toi_tolerance")});
            }});
     r.add({"exact", "reference: exact algebraic roots and signs on GMP integers (CGAL); zero thickness",
-           {{"prefilter", ParamType::boolean, true, "decide certainly separated queries by interval bounds first", 0, 0}},
+           {{"prefilter", ParamType::boolean, true, "decide certainly separated queries by interval bounds first", 0, 0},
+            {"certify", ParamType::boolean, true, "decide most queries (true contacts too) by interval classification "
+             "of the coplanarity windows before any algebra", 0, 0}},
            [](const ParamValues& p) -> std::unique_ptr<PrimitiveTester> {
-             return std::make_unique<ExactTester>(ExactTester::Params{p.boolean("prefilter")});
+             return std::make_unique<ExactTester>(ExactTester::Params{p.boolean("prefilter"), p.boolean("certify")});
            }});
     return r;
   }();

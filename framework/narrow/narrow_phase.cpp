@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "framework/narrow/split_filter.hpp"
+
 #include "framework/util/error.hpp"
 
 namespace ccdlab {
@@ -80,7 +82,10 @@ void NarrowPhase::run(NarrowScratch& scratch, std::vector<Contact>& out, NarrowC
   }
   if (cull) {
     cull_kdop(scratch, c);
-    if (const auto reach = tester_.cull_reach()) cull_plane(scratch, *reach, c);
+    if (const auto reach = tester_.cull_reach()) {
+      cull_plane(scratch, *reach, c);
+      cull_split(batch, *reach, c);
+    }
   }
   test(batch, out, c);
 }
@@ -123,6 +128,24 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   compact(batch, scratch.keep);
   c.plane_culled += n - batch.vf.size() - batch.ee.size();
   c.plane_ns += ns_since(t);
+}
+
+void NarrowPhase::cull_split(FeatureBatch& batch, CullReach reach, NarrowCounters& c) const {
+  const auto t = Clock::now();
+  const Positions &x0 = *x_t0_, &x1 = *x_t1_;
+  const std::size_t before = batch.vf.size() + batch.ee.size();
+  std::erase_if(batch.vf, [&](const VertexFacePair& p) {
+    const Face& f = mesh_.face(p.f);
+    return !split_filter_keeps(true, {&x0[p.v], &x0[f[0]], &x0[f[1]], &x0[f[2]]},
+                               {&x1[p.v], &x1[f[0]], &x1[f[1]], &x1[f[2]]}, reach);
+  });
+  std::erase_if(batch.ee, [&](const EdgeEdgePair& p) {
+    const Edge &a = mesh_.edge(p.a), &b = mesh_.edge(p.b);
+    return !split_filter_keeps(false, {&x0[a[0]], &x0[a[1]], &x0[b[0]], &x0[b[1]]},
+                               {&x1[a[0]], &x1[a[1]], &x1[b[0]], &x1[b[1]]}, reach);
+  });
+  c.split_culled += before - batch.vf.size() - batch.ee.size();
+  c.split_ns += ns_since(t);
 }
 
 void NarrowPhase::test(const FeatureBatch& batch, std::vector<Contact>& out, NarrowCounters& c) const {

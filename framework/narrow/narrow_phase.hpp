@@ -5,6 +5,7 @@
 //   gather   the feature pairs each candidate represents (representatives.hpp), or a chunk of orphans
 //   stage 1  swept feature 26-DOPs overlap (feature_bounds.hpp, SIMD)     every mode; defines the contact set
 //   stage 2  certified plane test, SIMD over the batch (plane_filter.hpp)   batched mode, testers with a reach
+//   stage 3  the plane test and the boxes on quarters of the step (split_filter.hpp)            〃
 //   test     the PrimitiveTester on the survivors; hits become contacts
 //
 // `scalar` mode runs stage 1 and the test pair by pair, as a student would write it; `batched` runs each
@@ -58,6 +59,7 @@ class NarrowPhase {
  private:
   void cull_kdop(NarrowScratch& scratch, NarrowCounters& c) const;
   void cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCounters& c) const;
+  void cull_split(FeatureBatch& batch, CullReach reach, NarrowCounters& c) const;
   void test(const FeatureBatch& batch, std::vector<Contact>& out, NarrowCounters& c) const;
   void test_vf(Index v, Index f, std::vector<Contact>& out, NarrowCounters& c) const;
   void test_ee(Index a, Index b, std::vector<Contact>& out, NarrowCounters& c) const;

@@ -1,5 +1,7 @@
 #include "strategies/testers/exact_tester.hpp"
 
+#include <optional>
+
 // CGAL's algebraic kernel on GMP integers. This is the only translation unit that includes it (it is heavy
 // to compile and is built with -frounding-math, see CMakeLists.txt).
 #include <CGAL/Algebraic_kernel_d_1.h>
@@ -163,19 +165,50 @@ ExactTester::Decision decide_points(const std::array<Vec3, 4>& x0, const std::ar
   return {};
 }
 
+
+/// The decision of the interval classification of f's windows, when it reaches one (see the header).
+std::optional<ExactTester::Decision> certified(const interval_ccd::RelativeMotion& m) {
+  constexpr double kWindowWidth = 0x1p-12, kToiWidth = 0x1p-50;
+  constexpr int kMaxWindows = 64;  // more: f near zero over much of the step (coplanar motion)
+  std::optional<ExactTester::Decision> out;
+  bool undecided = false;
+  int windows = 0;
+  interval_ccd::for_each_coplanarity_window(m, 0.0, 1.0, kWindowWidth, [&](double a, double b) {
+    if (++windows > kMaxWindows) return undecided = true;
+    switch (interval_ccd::classify(m, a, b)) {
+      case interval_ccd::Verdict::separated:
+        return false;
+      case interval_ccd::Verdict::contact:
+        out = ExactTester::Decision{true, interval_ccd::earliest_coplanarity(m, a, b, kToiWidth), b, true};
+        return true;
+      case interval_ccd::Verdict::unknown:
+        return undecided = true;
+    }
+    return undecided = true;
+  });
+  if (!out && !undecided) out = ExactTester::Decision{false, 1, 1, true};
+  return out;
+}
+
+template <class Query>
+std::optional<ExactTester::Decision> without_algebra(const Query& q, const ExactTester::Params& p) {
+  if (p.prefilter && interval_ccd::certainly_never_coplanar(q)) return ExactTester::Decision{false, 1, 1, true};
+  if (!p.prefilter && !p.certify) return std::nullopt;
+  const interval_ccd::RelativeMotion m = interval_ccd::relative_motion(q);
+  if (p.prefilter && interval_ccd::classify(m, 0, 1) == interval_ccd::Verdict::separated)
+    return ExactTester::Decision{false, 1, 1, true};
+  return p.certify ? certified(m) : std::nullopt;
+}
+
 }  // namespace
 
 ExactTester::Decision ExactTester::decide(const VertexFaceQuery& q) const {
-  if (params_.prefilter && (interval_ccd::certainly_never_coplanar(q) ||
-                            interval_ccd::classify(interval_ccd::relative_motion(q), 0, 1) == interval_ccd::Verdict::separated))
-    return {false, 1, 1, true};
+  if (const auto d = without_algebra(q, params_)) return *d;
   return decide_points({q.v_t0, q.f0_t0, q.f1_t0, q.f2_t0}, {q.v_t1, q.f0_t1, q.f1_t1, q.f2_t1}, false);
 }
 
 ExactTester::Decision ExactTester::decide(const EdgeEdgeQuery& q) const {
-  if (params_.prefilter && (interval_ccd::certainly_never_coplanar(q) ||
-                            interval_ccd::classify(interval_ccd::relative_motion(q), 0, 1) == interval_ccd::Verdict::separated))
-    return {false, 1, 1, true};
+  if (const auto d = without_algebra(q, params_)) return *d;
   return decide_points({q.ea0_t0, q.ea1_t0, q.eb0_t0, q.eb1_t0}, {q.ea0_t1, q.ea1_t1, q.eb0_t1, q.eb1_t1}, true);
 }
 

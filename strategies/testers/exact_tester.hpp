@@ -16,6 +16,13 @@
 //
 // An interval prefilter (the certified Bernstein bound of interval_ccd.hpp, which proves "no coplanarity
 // and no crossing in [0, 1]") answers most non-colliding queries without GMP; it never changes an answer.
+// Certification (`certify`) then settles most of the rest, true contacts above all, still without GMP: the
+// step is cut into the windows where f may vanish (at most 2⁻¹² wide, earliest first; outside them f ≠ 0,
+// proven) and each is classified with interval bounds. Separated windows are skipped; the first window
+// classified `contact` (f changes sign there and the features are strictly inside / crossing throughout) holds
+// the earliest contact, proven: hit, with the time enclosed in [earliest coplanarity window at 2⁻⁵⁰, window end].
+// When every window is separated: no contact, proven. Only an `unknown` window (a grazing or degenerate
+// contact) or coplanar motion (too many windows) goes on to the algebra.
 #include "framework/primitive/tester.hpp"
 
 namespace ccdlab {
@@ -24,12 +31,13 @@ class ExactTester final : public PrimitiveTester {
  public:
   struct Params {
     bool prefilter = true;  ///< decide certainly-separated queries with interval arithmetic first
+    bool certify = true;    ///< decide by interval classification of coplanarity windows before any algebra
   };
   /// The exact answer; toi_lo ≤ exact time of contact ≤ toi_hi (both 1 when there is no hit).
   struct Decision {
     bool hit = false;
     double toi_lo = 1.0, toi_hi = 1.0;
-    bool prefiltered = false;  ///< decided by the interval prefilter
+    bool prefiltered = false;  ///< decided by the interval prefilter or certification (no GMP)
   };
 
   ExactTester() = default;
