@@ -1,6 +1,7 @@
 #include "strategies/testers/exact_tester.hpp"
 
 #include <optional>
+#include <tuple>
 
 // CGAL's algebraic kernel on GMP integers. This is the only translation unit that includes it (it is heavy
 // to compile and is built with -frounding-math, see CMakeLists.txt).
@@ -167,8 +168,21 @@ ExactTester::Decision decide_points(const std::array<Vec3, 4>& x0, const std::ar
 
 
 /// The decision of the interval classification of f's windows, when it reaches one (see the header).
+/// Narrows a window [a, b] that holds the earliest contact (no contact before a, classify(a, b) = contact) by
+/// bisection: the left half is dropped when f ≠ 0 on it (proven), kept when it holds a proven contact itself;
+/// stops at adjacent doubles or where neither can be proven (interval bounds near their rounding floor).
+std::pair<double, double> narrow_contact(const interval_ccd::RelativeMotion& m, double a, double b) {
+  while (true) {
+    const double mid = 0.5 * (a + b);
+    if (!(mid > a && mid < b)) return {a, b};
+    if (interval_ccd::classify(m, a, mid, true) == interval_ccd::Verdict::separated) a = mid;
+    else if (interval_ccd::classify(m, a, mid) == interval_ccd::Verdict::contact) b = mid;
+    else return {a, b};
+  }
+}
+
 std::optional<ExactTester::Decision> certified(const interval_ccd::RelativeMotion& m) {
-  constexpr double kWindowWidth = 0x1p-12, kToiWidth = 0x1p-50;
+  constexpr double kWindowWidth = 0x1p-12;
   constexpr int kMaxWindows = 64;  // more: f near zero over much of the step (coplanar motion)
   std::optional<ExactTester::Decision> out;
   bool undecided = false;
@@ -179,7 +193,8 @@ std::optional<ExactTester::Decision> certified(const interval_ccd::RelativeMotio
       case interval_ccd::Verdict::separated:
         return false;
       case interval_ccd::Verdict::contact:
-        out = ExactTester::Decision{true, interval_ccd::earliest_coplanarity(m, a, b, kToiWidth), b, true};
+        out = ExactTester::Decision{true, a, b, true};
+        std::tie(out->toi_lo, out->toi_hi) = narrow_contact(m, a, b);
         return true;
       case interval_ccd::Verdict::unknown:
         return undecided = true;
