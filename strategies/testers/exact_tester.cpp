@@ -1,7 +1,6 @@
 #include "strategies/testers/exact_tester.hpp"
 
 #include <optional>
-#include <tuple>
 
 // CGAL's algebraic kernel on GMP integers. This is the only translation unit that includes it (it is heavy
 // to compile and is built with -frounding-math, see CMakeLists.txt).
@@ -182,7 +181,7 @@ std::pair<double, double> narrow_contact(const interval_ccd::RelativeMotion& m, 
 }
 
 std::optional<ExactTester::Decision> certified(const interval_ccd::RelativeMotion& m) {
-  constexpr double kWindowWidth = 0x1p-12;
+  constexpr double kWindowWidth = 0x1p-12, kToiWidth = 0x1p-30;
   constexpr int kMaxWindows = 64;  // more: f near zero over much of the step (coplanar motion)
   std::optional<ExactTester::Decision> out;
   bool undecided = false;
@@ -193,8 +192,8 @@ std::optional<ExactTester::Decision> certified(const interval_ccd::RelativeMotio
       case interval_ccd::Verdict::separated:
         return false;
       case interval_ccd::Verdict::contact:
-        out = ExactTester::Decision{true, a, b, true};
-        std::tie(out->toi_lo, out->toi_hi) = narrow_contact(m, a, b);
+        if (const auto [lo, hi] = narrow_contact(m, a, b); hi - lo <= kToiWidth) out = ExactTester::Decision{true, lo, hi, true};
+        else undecided = true;  // the time stays too loose: the algebra gives it to adjacent doubles
         return true;
       case interval_ccd::Verdict::unknown:
         return undecided = true;

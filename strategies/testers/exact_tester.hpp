@@ -21,8 +21,8 @@
 // proven) and each is classified with interval bounds. Separated windows are skipped; the first window
 // classified `contact` (f changes sign there and the features are strictly inside / crossing throughout) holds
 // the earliest contact, proven: hit, and bisection narrows the time (halves where f ≠ 0 are dropped, halves with
-// a proven contact kept) as far as interval bounds prove: ≤ 2·10⁻⁹ wide on every hard case (the algebra's
-// enclosures are adjacent doubles; certify=false for those).
+// a proven contact kept) as far as interval bounds prove; an enclosure left wider than 2⁻³⁰ goes to the algebra
+// (whose enclosures are adjacent doubles; certify=false gives those for every hit).
 // When every window is separated: no contact, proven. Only an `unknown` window (a grazing or degenerate
 // contact) or coplanar motion (too many windows) goes on to the algebra.
 #include "framework/primitive/tester.hpp"

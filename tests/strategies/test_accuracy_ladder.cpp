@@ -55,7 +55,7 @@ TEST(AccuracyLadder, ExactAgreesWithEveryHardCaseAndItsTimeOfContact) {
         if (d.hit) {
           EXPECT_LE(d.toi_lo, d.toi_hi);
           // Within a couple of ulps from the algebra; as narrow as interval bounds prove when certified.
-          EXPECT_LE(d.toi_hi - d.toi_lo, d.prefiltered ? 1e-8 : 2.3e-16) << s.origin[i];
+          EXPECT_LE(d.toi_hi - d.toi_lo, d.prefiltered ? 0x1p-30 : 2.3e-16) << s.origin[i];
           widest = std::max(widest, d.prefiltered ? d.toi_hi - d.toi_lo : 0.0);
         }
         if (!std::isnan(s.toi[i])) {  // known exactly; 1/3 itself is not a double, hence the 1e-16 slack
