@@ -5,6 +5,7 @@
 #include "strategies/scenes/drape_fold_scene.hpp"
 #include "strategies/schedulers/front_scheduler.hpp"
 #include "strategies/schedulers/phc_scheduler.hpp"
+#include "strategies/schedulers/embree_scheduler.hpp"
 #include "strategies/schedulers/sequential_scheduler.hpp"
 #include "strategies/schedulers/static_scheduler.hpp"
 #include "strategies/testers/conservative_tester.hpp"
@@ -55,6 +56,9 @@ const SchedulerRegistry& scheduler_registry() {
            [](const ParamValues& p) -> std::unique_ptr<TraversalScheduler> {
              return std::make_unique<StaticScheduler>(StaticScheduler::Params{int(p.integer("c"))});
            }});
+    r.add({"embree", "Intel Embree's rtcCollide over the leaves' boxes, then the leaf k-DOPs: the industry's broad phase, "
+           "side by side", {},
+           [](const ParamValues&) -> std::unique_ptr<TraversalScheduler> { return std::make_unique<EmbreeScheduler>(); }});
     return r;
   }();
   return r;

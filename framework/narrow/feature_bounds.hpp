@@ -63,7 +63,7 @@ class FeatureBounds {
     for (int i = 0; i < PaddedDop::kAxes; ++i) {
       const float lo = std::min(std::min(a.min[i], b.min[i]), c.min[i]);
       const float hi = std::max(std::max(a.max[i], b.max[i]), c.max[i]);
-      apart |= (p.min[i] > hi) | (lo > p.max[i]);
+      apart |= int(p.min[i] > hi) | int(lo > p.max[i]);
     }
     return !apart;
   }
@@ -71,8 +71,8 @@ class FeatureBounds {
     const PaddedDop &a0 = vertex_[ea[0]], &a1 = vertex_[ea[1]], &b0 = vertex_[eb[0]], &b1 = vertex_[eb[1]];
     bool apart = false;
     for (int i = 0; i < PaddedDop::kAxes; ++i) {
-      apart |= (std::min(a0.min[i], a1.min[i]) > std::max(b0.max[i], b1.max[i])) |
-               (std::min(b0.min[i], b1.min[i]) > std::max(a0.max[i], a1.max[i]));
+      apart |= int(std::min(a0.min[i], a1.min[i]) > std::max(b0.max[i], b1.max[i])) |
+               int(std::min(b0.min[i], b1.min[i]) > std::max(a0.max[i], a1.max[i]));
     }
     return !apart;
   }

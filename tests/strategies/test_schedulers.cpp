@@ -195,3 +195,24 @@ TEST(AdaptiveRestructuring, RebuildsDegradedSubtreesWithoutChangingAnswers) {
 
 }  // namespace
 }  // namespace ccdlab
+
+namespace ccdlab {
+namespace {
+
+TEST(EmbreeScheduler, YieldsExactlyTheCandidatesOfSequentialStepAfterStep) {
+  // Embree's rtcCollide over boxes, then the leaf k-DOPs: the same candidates as ccdlab's own traversal, on a
+  // scene with a self pass and a cloth–obstacle pass, for two K and two thread counts.
+  const MeshSequence scene = small_scene();
+  for (int k : {6, 18}) {
+    const RunResult reference = run(scene, make("sequential", {}, 1, k));
+    ASSERT_GT(reference.candidates.back().size(), 50u);
+    for (int threads : {1, 2}) {
+      const RunResult embree = run(scene, make("embree", {}, threads, k));
+      EXPECT_EQ(embree.candidates, reference.candidates) << "K=" << k << " threads=" << threads;
+      EXPECT_EQ(embree.hashes, reference.hashes) << "K=" << k << " threads=" << threads;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace ccdlab

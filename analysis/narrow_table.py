@@ -1,0 +1,91 @@
+#!/usr/bin/python3
+"""Per-phase table of real steps: two ccdlab builds (or two narrow modes of one) in alternating rounds.
+
+    /usr/bin/python3 analysis/narrow_table.py --a BASE_CLI --b build/bin/ccdlab [--rounds 3] [--threads 1]
+        [--a-args "..."] [--b-args "..."] [--data ../shared/data] > table.md
+
+Runs `CLI step T0 T1 --json ARGS` for every real step of ../shared/data/meshes (those present), A and B
+alternating (A B, B A, ...), and prints one Markdown row per step and side with the medians: BV tests,
+elementary tests, tests per true contact, ms per phase, and ns per feature pair in the narrow phase
+(candidates' pairs and orphans together). Both sides must report the same contact hash (exit 1 otherwise).
+"""
+import argparse
+import json
+import os
+import shlex
+import statistics
+import subprocess
+import sys
+
+STEPS = [("cloth-funnel", "227.ply", "228.ply"),
+         ("rod-twist", "3036.ply", "3037.ply"),
+         ("n-body-simulation", "balls16_18.ply", "balls16_19.ply")]
+
+
+def run(cli, t0, t1, args):
+    out = subprocess.run([cli, "step", t0, t1, "--json"] + args, capture_output=True, text=True)
+    if out.returncode != 0:
+        sys.exit(f"narrow_table: {cli} step {t0} failed: {out.stderr.strip()[-300:]}")
+    return json.loads(out.stdout)
+
+
+def summary(runs):
+    med = lambda f: statistics.median(f(r) for r in runs)
+    r0 = runs[0]
+    c = r0["counters"]
+    contacts = r0["contacts"]["vf"] + r0["contacts"]["ee"]
+    tests = c["vf_tests"] + c["ee_tests"]
+    pairs = c["vf_pairs"] + c["ee_pairs"]
+    narrow = med(lambda r: r["ms"]["narrow"] + r["ms"]["orphans"])
+    return {
+        "bv_tests": c["bv_tests"], "pairs": pairs, "tests": tests, "contacts": contacts,
+        "total": med(lambda r: r["ms"]["total"]), "traverse": med(lambda r: r["ms"]["traverse"]),
+        "narrow": narrow, "ns_per_pair": 1e6 * narrow / max(pairs, 1),
+        "ns_per_test": 1e6 * narrow / max(tests, 1), "hash": r0["hash"],
+    }
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--a", required=True, help="CLI of side A")
+    ap.add_argument("--b", default="build/bin/ccdlab", help="CLI of side B")
+    ap.add_argument("--a-args", default="", help="extra step arguments of side A")
+    ap.add_argument("--b-args", default="", help="extra step arguments of side B")
+    ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--data", default=os.path.join(os.path.dirname(__file__), "..", "..", "shared", "data"))
+    o = ap.parse_args()
+    sides = {"A": (o.a, shlex.split(o.a_args)), "B": (o.b, shlex.split(o.b_args))}
+    print(f"threads {o.threads}, {o.rounds} alternating rounds, medians. A = `{o.a} {o.a_args}`, B = `{o.b} {o.b_args}`\n")
+    print("| step | side | triangles | BV tests | feature pairs | elementary tests | tests / true contact | "
+          "ms total | ms traverse | ms narrow + orphans | ns / feature pair | ns / test |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    status = 0
+    for scene, f0, f1 in STEPS:
+        t0 = os.path.join(o.data, "meshes", scene, f0)
+        t1 = os.path.join(o.data, "meshes", scene, f1)
+        if not os.path.exists(t0):
+            print(f"narrow_table: {t0} absent, skipped", file=sys.stderr)
+            continue
+        runs = {"A": [], "B": []}
+        for i in range(o.rounds):
+            for side in (["A", "B"] if i % 2 == 0 else ["B", "A"]):
+                cli, args = sides[side]
+                runs[side].append(run(cli, t0, t1, args + ["--threads", str(o.threads)]))
+        rows = {side: summary(r) for side, r in runs.items()}
+        if rows["A"]["hash"] != rows["B"]["hash"]:
+            print(f"narrow_table: {scene}: contact hashes differ: {rows['A']['hash']} vs {rows['B']['hash']}", file=sys.stderr)
+            status = 1
+        tri = runs["A"][0].get("triangles", "")
+        for side in ("A", "B"):
+            s = rows[side]
+            print(f"| {scene} | {side} | {tri:,} | {s['bv_tests'] / 1e6:.2f}M | {s['pairs'] / 1e6:.2f}M | "
+                  f"{s['tests'] / 1e6:.3f}M | {s['tests'] / max(s['contacts'], 1):.1f} | {s['total']:.0f} | "
+                  f"{s['traverse']:.0f} | {s['narrow']:.0f} | {s['ns_per_pair']:.0f} | {s['ns_per_test']:.0f} |")
+        print(f"| {scene} | A/B | | | | | | {rows['A']['total'] / rows['B']['total']:.2f}× | | "
+              f"{rows['A']['narrow'] / rows['B']['narrow']:.2f}× | {rows['A']['ns_per_pair'] / rows['B']['ns_per_pair']:.2f}× | |")
+    sys.exit(status)
+
+
+if __name__ == "__main__":
+    main()
