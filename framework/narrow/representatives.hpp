@@ -47,7 +47,7 @@ class Representatives {
   [[nodiscard]] bool adjacent(Index f, Index g) const {
     const Face &a = mesh_.face(f), &b = mesh_.face(g);
     bool shared = false;
-    for (Index u : a) shared |= (u == b[0]) | (u == b[1]) | (u == b[2]);
+    for (Index u : a) shared |= int(u == b[0]) | int(u == b[1]) | int(u == b[2]);
     return shared;
   }
   /// first_free: the face pair that represents (v, f) / (a, b) with a < b, or -1 when every one is adjacent.
