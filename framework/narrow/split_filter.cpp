@@ -7,6 +7,9 @@ namespace ccdlab {
 namespace {
 
 constexpr double u = 0x1p-53;
+/// Windows down to 1/16 of the step: deeper ones rarely pay for their boxes.
+constexpr int kMaxDepth = 4;
+static_assert(kMaxDepth <= 8, "the rounding bound below covers 8 halvings");
 
 double det(const Vec3& x, const Vec3& y, const Vec3& z) {
   const Vec3 c(y.y() * z.z() - y.z() * z.y(), y.z() * z.x() - y.x() * z.z(), y.x() * z.y() - y.y() * z.x());
@@ -45,38 +48,36 @@ bool split_filter_keeps(bool vf, const std::array<const Vec3*, 4>& p0, const std
                mc = std::max(norm1(C0), norm1(C1));
   const double bmax = std::max({std::abs(b[0]), std::abs(b[1]), std::abs(b[2]), std::abs(b[3])});
   const double bc = std::sqrt(std::max(B0.squaredNorm(), B1.squaredNorm()) * std::max(C0.squaredNorm(), C1.squaredNorm()));
-  // 32u for the coefficients (+4u for the division by 3), 16u·max|b| for two halvings.
+  // 32u for the coefficients (+4u for the division by 3), 2u·max|b| per halving (kMaxDepth ≤ 8 of them).
   const double t = r * bc * (1 + 1e-12) + 40 * u * (ma * mb * mc) + 16 * u * bmax + 1e-290;
   const double pad = r * (1 + 1e-12) + 8 * u * M + 1e-300;
-  std::array<double, 4> h0, h1, q[4];
-  halve(b, h0, h1);
-  halve(h0, q[0], q[1]);
-  halve(h1, q[2], q[3]);
+  const int split = vf ? 1 : 2;  // first feature = points [0, split), second = [split, 4)
   auto at = [&](int i, double s) -> Vec3 { return *p0[i] + s * (*p1[i] - *p0[i]); };
-  for (int k = 0; k < 4; ++k) {
-    const auto& c = q[k];
+  // True when no contact within the reach is possible in [ta, tb] (c: f's Bernstein coefficients there).
+  auto apart = [&](auto&& self, double ta, double tb, const std::array<double, 4>& c, int depth) -> bool {
     const bool above = c[0] > t && c[1] > t && c[2] > t && c[3] > t;
     const bool below = c[0] < -t && c[1] < -t && c[2] < -t && c[3] < -t;
-    if (above || below) continue;
-    // Boxes of the two features over the quarter: first feature = points [0, split), second = [split, 4).
-    const int split = vf ? 1 : 2;
-    Vec3 lo[2], hi[2];
-    for (int f = 0; f < 2; ++f) {
-      lo[f] = Vec3::Constant(INFINITY);
-      hi[f] = Vec3::Constant(-INFINITY);
-    }
+    if (above || below) return true;
+    Vec3 lo[2] = {Vec3::Constant(INFINITY), Vec3::Constant(INFINITY)};
+    Vec3 hi[2] = {Vec3::Constant(-INFINITY), Vec3::Constant(-INFINITY)};
     for (int i = 0; i < 4; ++i) {
       const int f = i < split ? 0 : 1;
-      for (double s : {0.25 * k, 0.25 * (k + 1)}) {
+      for (double s : {ta, tb}) {
         const Vec3 x = at(i, s);
         lo[f] = lo[f].cwiseMin(x);
         hi[f] = hi[f].cwiseMax(x);
       }
     }
-    const bool apart = ((lo[0].array() - pad > hi[1].array()) || (lo[1].array() - pad > hi[0].array())).any();
-    if (!apart) return true;
-  }
-  return false;
+    if (((lo[0].array() - pad > hi[1].array()) || (lo[1].array() - pad > hi[0].array())).any()) return true;
+    if (depth == kMaxDepth) return false;
+    std::array<double, 4> l, h;
+    halve(c, l, h);
+    const double tm = 0.5 * (ta + tb);
+    return self(self, ta, tm, l, depth + 1) && self(self, tm, tb, h, depth + 1);
+  };
+  std::array<double, 4> l, h;
+  halve(b, l, h);  // the whole step failed stages 1 and 2 already
+  return !(apart(apart, 0.0, 0.5, l, 1) && apart(apart, 0.5, 1.0, h, 1));
 }
 
 }  // namespace ccdlab

@@ -1,15 +1,16 @@
 #pragma once
-// Stage 3 of the batched narrow phase: the plane test again, on quarters of the step, with the features' boxes.
+// Stage 3 of the batched narrow phase: the plane test again, on parts of the step, with the features' boxes.
 // A pair that reaches it has a coplanarity cubic f that may vanish somewhere in [0, 1] (stage 2 could not
 // rule it out). Most such pairs are features whose planes cross while they are far apart: the vertex passes
-// the face's plane beside the face, the edges' lines cross beyond their ends. On each quarter [k/4, (k+1)/4]:
-//   - f's Bernstein coefficients there (two de Casteljau halvings of the whole-step ones) may all keep one
-//     sign beyond the threshold of plane_filter.hpp (plus the rounding of the halvings), or
-//   - the two features' boxes over the quarter (a linearly moving point stays between its positions at the
-//     quarter's ends), grown by the reach, may be disjoint on some axis.
-// Either proves that no contact within the reach happens in that quarter; when all four are proven, the pair
-// is dropped. Rounding: positions at t are padded by 8u·M (M = the pair's largest coordinate magnitude), the
-// halvings by 16u·max|b|, on top of the 32u bound of the coefficients themselves.
+// the face's plane beside the face, the edges' lines cross beyond their ends. The step is halved recursively
+// (down to 1/16) and on each window:
+//   - f's Bernstein coefficients there (de Casteljau halvings of the whole-step ones) may all keep one sign
+//     beyond the threshold of plane_filter.hpp (plus the rounding of the halvings), or
+//   - the two features' boxes over the window (a linearly moving point stays between its positions at the
+//     window's ends), grown by the reach, may be disjoint on some axis.
+// Either proves that no contact within the reach happens in that window, which is then not split further;
+// when every window is proven, the pair is dropped. Rounding: positions at t are padded by 8u·M (M = the pair's
+// largest coordinate magnitude), the halvings by 16u·max|b|, on top of the 40u bound of the coefficients.
 #include <array>
 
 #include "framework/geometry/vec.hpp"

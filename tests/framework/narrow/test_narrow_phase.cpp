@@ -10,6 +10,7 @@
 #include <set>
 
 #include "framework/narrow/narrow_phase.hpp"
+#include "framework/narrow/split_filter.hpp"
 #include "framework/pipeline/brute_force.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
 #include "strategies/registry.hpp"
@@ -70,13 +71,13 @@ TEST(PlaneFilter, EverySimdTargetAgreesWithThePlainVersion) {
 
 TEST(PlaneFilter, NeverDropsAPairTheFloatTesterReports) {
   // Random VF and EE queries in near contact (at thickness 0 and > 0): whatever the tester reports as a hit,
-  // the filter keeps, at the reach the tester declares.
+  // stages 2 and 3 keep, at the reach the tester declares.
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
   for (double eta : {0.0, 0.02}) {
     FloatTester tester(FloatTester::Params{eta});
     const CullReach reach = *tester.cull_reach();
-    int hits = 0, culled = 0;
+    int hits = 0, culled = 0, split_culled = 0;
     for (int i = 0; i < 20000; ++i) {
       auto p = [&] { return Vec3(u(rng), u(rng), 0.1 * u(rng)); };
       VertexFaceQuery q{p(), p(), p(), p(), p(), p(), p(), p()};
@@ -92,15 +93,21 @@ TEST(PlaneFilter, NeverDropsAPairTheFloatTesterReports) {
       const bool hit_vf = tester.vertex_face(q).hit, hit_ee = tester.edge_edge(r).hit;
       hits += hit_vf + hit_ee;
       culled += !keep[0] + !keep[1];
+      const bool split_vf = split_filter_keeps(true, {&q.v_t0, &q.f0_t0, &q.f1_t0, &q.f2_t0},
+                                               {&q.v_t1, &q.f0_t1, &q.f1_t1, &q.f2_t1}, reach);
+      const bool split_ee = split_filter_keeps(false, {&r.ea0_t0, &r.ea1_t0, &r.eb0_t0, &r.eb1_t0},
+                                               {&r.ea0_t1, &r.ea1_t1, &r.eb0_t1, &r.eb1_t1}, reach);
+      split_culled += (keep[0] && !split_vf) + (keep[1] && !split_ee);
       if (hit_vf) {
-        ASSERT_TRUE(keep[0]) << "eta " << eta << " query " << i;
+        ASSERT_TRUE(keep[0] && split_vf) << "eta " << eta << " query " << i;
       }
       if (hit_ee) {
-        ASSERT_TRUE(keep[1]) << "eta " << eta << " query " << i;
+        ASSERT_TRUE(keep[1] && split_ee) << "eta " << eta << " query " << i;
       }
     }
     EXPECT_GT(hits, 1000);
     EXPECT_GT(culled, 1000);
+    EXPECT_GT(split_culled, 500);  // stage 3 removes many of what stage 2 keeps
   }
 }
 
