@@ -83,8 +83,7 @@ void NarrowPhase::run(NarrowScratch& scratch, std::vector<Contact>& out, NarrowC
   if (cull) {
     cull_kdop(scratch, c);
     if (const auto reach = tester_.cull_reach()) {
-      cull_plane(scratch, *reach, c);
-      cull_split(batch, *reach, c);
+      cull_plane(scratch, *reach, c);  // stages 2 and 3
     }
   }
   test(batch, out, c);
@@ -125,27 +124,28 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   }
   scratch.keep.resize(n);
   plane_filter(plane, reach, scratch.keep.data());
-  compact(batch, scratch.keep);
-  c.plane_culled += n - batch.vf.size() - batch.ee.size();
+  std::size_t plane_kept = 0;
+  for (std::uint8_t k : scratch.keep) plane_kept += k;
+  c.plane_culled += n - plane_kept;
+  const auto t_split = Clock::now();
   c.plane_ns += ns_since(t);
-}
-
-void NarrowPhase::cull_split(FeatureBatch& batch, CullReach reach, NarrowCounters& c) const {
-  const auto t = Clock::now();
-  const Positions &x0 = *x_t0_, &x1 = *x_t1_;
-  const std::size_t before = batch.vf.size() + batch.ee.size();
-  std::erase_if(batch.vf, [&](const VertexFacePair& p) {
-    const Face& f = mesh_.face(p.f);
-    return !split_filter_keeps(true, {&x0[p.v], &x0[f[0]], &x0[f[1]], &x0[f[2]]},
-                               {&x1[p.v], &x1[f[0]], &x1[f[1]], &x1[f[2]]}, reach);
-  });
-  std::erase_if(batch.ee, [&](const EdgeEdgePair& p) {
-    const Edge &a = mesh_.edge(p.a), &b = mesh_.edge(p.b);
-    return !split_filter_keeps(false, {&x0[a[0]], &x0[a[1]], &x0[b[0]], &x0[b[1]]},
-                               {&x1[a[0]], &x1[a[1]], &x1[b[0]], &x1[b[1]]}, reach);
-  });
-  c.split_culled += before - batch.vf.size() - batch.ee.size();
-  c.split_ns += ns_since(t);
+  // Stage 3 on stage 2's survivors, reusing its coefficients (row i of the plane batch).
+  for (std::size_t i = 0; i < nvf; ++i) {
+    if (!scratch.keep[i]) continue;
+    const Index v = batch.vf[i].v;
+    const Face& f = mesh_.face(batch.vf[i].f);
+    scratch.keep[i] = split_filter_keeps(true, {&x0[v], &x0[f[0]], &x0[f[1]], &x0[f[2]]},
+                                         {&x1[v], &x1[f[0]], &x1[f[1]], &x1[f[2]]}, plane, i);
+  }
+  for (std::size_t i = nvf; i < n; ++i) {
+    if (!scratch.keep[i]) continue;
+    const Edge &a = mesh_.edge(batch.ee[i - nvf].a), &b = mesh_.edge(batch.ee[i - nvf].b);
+    scratch.keep[i] = split_filter_keeps(false, {&x0[a[0]], &x0[a[1]], &x0[b[0]], &x0[b[1]]},
+                                         {&x1[a[0]], &x1[a[1]], &x1[b[0]], &x1[b[1]]}, plane, i);
+  }
+  compact(batch, scratch.keep);
+  c.split_culled += plane_kept - batch.vf.size() - batch.ee.size();
+  c.split_ns += ns_since(t_split);
 }
 
 void NarrowPhase::test(const FeatureBatch& batch, std::vector<Contact>& out, NarrowCounters& c) const {

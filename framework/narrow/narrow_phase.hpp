@@ -59,7 +59,6 @@ class NarrowPhase {
  private:
   void cull_kdop(NarrowScratch& scratch, NarrowCounters& c) const;
   void cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCounters& c) const;
-  void cull_split(FeatureBatch& batch, CullReach reach, NarrowCounters& c) const;
   void test(const FeatureBatch& batch, std::vector<Contact>& out, NarrowCounters& c) const;
   void test_vf(Index v, Index f, std::vector<Contact>& out, NarrowCounters& c) const;
   void test_ee(Index a, Index b, std::vector<Contact>& out, NarrowCounters& c) const;

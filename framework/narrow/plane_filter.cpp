@@ -20,7 +20,8 @@ HWY_INLINE V det3(D, V xx, V xy, V xz, V yx, V yy, V yz, V zx, V zy, V zz) {
   return hn::Add(hn::Add(hn::Mul(xx, cx), hn::Mul(xy, cy)), hn::Mul(xz, cz));
 }
 
-void PlaneFilter(const double* const* col, std::size_t n, double abs_reach, double rel_reach, std::uint8_t* keep) {
+void PlaneFilter(const double* const* col, double* const* out, std::size_t n, double abs_reach, double rel_reach,
+                 std::uint8_t* keep) {
   const hn::ScalableTag<double> d;
   using V = hn::Vec<decltype(d)>;
   const std::size_t N = hn::Lanes(d);
@@ -64,6 +65,12 @@ void PlaneFilter(const double* const* col, std::size_t n, double abs_reach, doub
     const auto below =
         hn::And(hn::And(hn::Lt(q0, neg_t), hn::Lt(q3, neg_t)), hn::And(hn::Lt(q1, neg_t3), hn::Lt(q2, neg_t3)));
     const auto culled = hn::Or(above, below);
+    hn::StoreU(q0, d, out[PlaneBatch::Q0] + i);
+    hn::StoreU(q1, d, out[PlaneBatch::Q1x3] + i);
+    hn::StoreU(q2, d, out[PlaneBatch::Q2x3] + i);
+    hn::StoreU(q3, d, out[PlaneBatch::Q3] + i);
+    hn::StoreU(t, d, out[PlaneBatch::Threshold] + i);
+    hn::StoreU(reach, d, out[PlaneBatch::Reach] + i);
     std::uint8_t bits[8] = {};
     hn::StoreMaskBits(d, culled, bits);
     for (std::size_t j = 0; j < N && i + j < n; ++j) keep[i + j] = std::uint8_t(((bits[j / 8] >> (j % 8)) & 1) ^ 1);
@@ -75,6 +82,7 @@ void PlaneFilter(const double* const* col, std::size_t n, double abs_reach, doub
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include <algorithm>
 #include <cmath>
 
 namespace ccdlab {
@@ -84,13 +92,19 @@ HWY_EXPORT(PlaneFilter);
 void PlaneBatch::resize(std::size_t n) {
   size_ = n;
   const std::size_t padded = (n + kPad - 1) / kPad * kPad;
-  for (auto& c : col_) c.assign(padded, 0.0);  // padding rows: all zero, kept, never read back
+  for (auto& c : col_) {
+    c.resize(padded);
+    std::fill(c.begin() + std::ptrdiff_t(n), c.end(), 0.0);  // padding rows: zero, kept, never read back
+  }
+  for (auto& c : out_) c.resize(padded);
 }
 
-void plane_filter(const PlaneBatch& batch, CullReach reach, std::uint8_t* keep) {
+void plane_filter(PlaneBatch& batch, CullReach reach, std::uint8_t* keep) {
   const double* cols[PlaneBatch::kColumns];
   for (int c = 0; c < PlaneBatch::kColumns; ++c) cols[c] = batch.column(c);
-  HWY_DYNAMIC_DISPATCH(PlaneFilter)(cols, batch.size(), reach.abs, reach.rel, keep);
+  double* out[PlaneBatch::kResults];
+  for (int r = 0; r < PlaneBatch::kResults; ++r) out[r] = batch.result_column(r);
+  HWY_DYNAMIC_DISPATCH(PlaneFilter)(cols, out, batch.size(), reach.abs, reach.rel, keep);
 }
 
 bool plane_filter_keeps(const PlaneBatch& batch, std::size_t i, CullReach reach) {

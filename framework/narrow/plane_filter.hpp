@@ -44,14 +44,21 @@ class PlaneBatch {
   }
   [[nodiscard]] const double* column(int c) const { return col_[c].data(); }
 
+  /// What plane_filter leaves per row for stage 3 (split_filter.hpp): the cubic's Bernstein coefficients
+  /// (b1, b2 times 3), the threshold they were compared with, and the reach.
+  enum Result { Q0, Q1x3, Q2x3, Q3, Threshold, Reach, kResults };
+  [[nodiscard]] double result(int r, std::size_t i) const { return out_[r][i]; }
+  [[nodiscard]] double* result_column(int r) { return out_[r].data(); }
+
  private:
   std::array<std::vector<double>, kColumns> col_;
+  std::array<std::vector<double>, kResults> out_;
   std::size_t size_ = 0;
 };
 
 /// keep[i] = 0 when pair i is proven to stay farther than the reach, 1 otherwise (keep has batch.size()
-/// entries). Runs on the best SIMD target of this CPU (or the one forced by hwy::SetSupportedTargetsForTest).
-void plane_filter(const PlaneBatch& batch, CullReach reach, std::uint8_t* keep);
+/// entries); fills the batch's results. Runs on the best SIMD target of this CPU (or the one forced by hwy::SetSupportedTargetsForTest).
+void plane_filter(PlaneBatch& batch, CullReach reach, std::uint8_t* keep);
 
 /// The same test for one pair, plain C++: the reference the SIMD targets are checked against.
 [[nodiscard]] bool plane_filter_keeps(const PlaneBatch& batch, std::size_t i, CullReach reach);

@@ -11,11 +11,6 @@ constexpr double u = 0x1p-53;
 constexpr int kMaxDepth = 4;
 static_assert(kMaxDepth <= 8, "the rounding bound below covers 8 halvings");
 
-double det(const Vec3& x, const Vec3& y, const Vec3& z) {
-  const Vec3 c(y.y() * z.z() - y.z() * z.y(), y.z() * z.x() - y.x() * z.z(), y.x() * z.y() - y.y() * z.x());
-  return (x.x() * c.x() + x.y() * c.y()) + x.z() * c.z();
-}
-double norm1(const Vec3& x) { return std::abs(x.x()) + std::abs(x.y()) + std::abs(x.z()); }
 
 /// Bernstein coefficients of a cubic on [0, 1/2] and [1/2, 1] (de Casteljau at 1/2; halvings are exact but
 /// for the sums' rounding).
@@ -29,55 +24,59 @@ void halve(const std::array<double, 4>& b, std::array<double, 4>& lo, std::array
 }  // namespace
 
 bool split_filter_keeps(bool vf, const std::array<const Vec3*, 4>& p0, const std::array<const Vec3*, 4>& p1,
-                        CullReach reach) {
-  // A, B, C of plane_filter.hpp at both ends.
-  const auto abc = [&](const std::array<const Vec3*, 4>& p, Vec3& A, Vec3& B, Vec3& C) {
-    if (vf) A = *p[0] - *p[1], B = *p[2] - *p[1], C = *p[3] - *p[1];
-    else A = *p[2] - *p[0], B = *p[1] - *p[0], C = *p[3] - *p[2];
-  };
-  Vec3 A0, B0, C0, A1, B1, C1;
-  abc(p0, A0, B0, C0);
-  abc(p1, A1, B1, C1);
-  const std::array<double, 4> b = {det(A0, B0, C0), (det(A1, B0, C0) + det(A0, B1, C0) + det(A0, B0, C1)) / 3,
-                                   (det(A0, B1, C1) + det(A1, B0, C1) + det(A1, B1, C0)) / 3, det(A1, B1, C1)};
-  double M = 0, L = 0;
-  for (int i = 0; i < 4; ++i) M = std::max({M, p0[i]->cwiseAbs().maxCoeff(), p1[i]->cwiseAbs().maxCoeff()});
-  L = 2 * std::sqrt(3.0) * M;  // every coordinate within ±M: the pair's extent is at most that diagonal
-  const double r = reach.abs + reach.rel * L;
-  const double ma = std::max(norm1(A0), norm1(A1)), mb = std::max(norm1(B0), norm1(B1)),
-               mc = std::max(norm1(C0), norm1(C1));
+                        const PlaneBatch& plane, std::size_t row) {
+  const std::array<double, 4> b = {plane.result(PlaneBatch::Q0, row), plane.result(PlaneBatch::Q1x3, row) / 3,
+                                   plane.result(PlaneBatch::Q2x3, row) / 3, plane.result(PlaneBatch::Q3, row)};
+  double M = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) M = std::max({M, std::abs((*p0[i])[k]), std::abs((*p1[i])[k])});
   const double bmax = std::max({std::abs(b[0]), std::abs(b[1]), std::abs(b[2]), std::abs(b[3])});
-  const double bc = std::sqrt(std::max(B0.squaredNorm(), B1.squaredNorm()) * std::max(C0.squaredNorm(), C1.squaredNorm()));
-  // 32u for the coefficients (+4u for the division by 3), 2u·max|b| per halving (kMaxDepth ≤ 8 of them).
-  const double t = r * bc * (1 + 1e-12) + 40 * u * (ma * mb * mc) + 16 * u * bmax + 1e-290;
-  const double pad = r * (1 + 1e-12) + 8 * u * M + 1e-300;
+  // Stage 2's threshold, + u·max|b| for the division by 3 and 2u·max|b| per halving (kMaxDepth ≤ 8 of them).
+  const double t = plane.result(PlaneBatch::Threshold, row) * (1 + 4 * u) + 18 * u * bmax;
+  const double pad = plane.result(PlaneBatch::Reach, row) * (1 + 1e-12) + 8 * u * M + 1e-300;
   const int split = vf ? 1 : 2;  // first feature = points [0, split), second = [split, 4)
-  auto at = [&](int i, double s) -> Vec3 { return *p0[i] + s * (*p1[i] - *p0[i]); };
-  // True when no contact within the reach is possible in [ta, tb] (c: f's Bernstein coefficients there).
-  auto apart = [&](auto&& self, double ta, double tb, const std::array<double, 4>& c, int depth) -> bool {
-    const bool above = c[0] > t && c[1] > t && c[2] > t && c[3] > t;
-    const bool below = c[0] < -t && c[1] < -t && c[2] < -t && c[3] < -t;
-    if (above || below) return true;
-    Vec3 lo[2] = {Vec3::Constant(INFINITY), Vec3::Constant(INFINITY)};
-    Vec3 hi[2] = {Vec3::Constant(-INFINITY), Vec3::Constant(-INFINITY)};
-    for (int i = 0; i < 4; ++i) {
-      const int f = i < split ? 0 : 1;
-      for (double s : {ta, tb}) {
-        const Vec3 x = at(i, s);
-        lo[f] = lo[f].cwiseMin(x);
-        hi[f] = hi[f].cwiseMax(x);
-      }
-    }
-    if (((lo[0].array() - pad > hi[1].array()) || (lo[1].array() - pad > hi[0].array())).any()) return true;
-    if (depth == kMaxDepth) return false;
-    std::array<double, 4> l, h;
-    halve(c, l, h);
-    const double tm = 0.5 * (ta + tb);
-    return self(self, ta, tm, l, depth + 1) && self(self, tm, tb, h, depth + 1);
+  // Positions at t: x0 + t·d, per point and axis, in plain arrays (the window loop below runs often).
+  double x0[4][3], d[4][3];
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) x0[i][k] = (*p0[i])[k], d[i][k] = (*p1[i])[k] - (*p0[i])[k];
+  // No contact within the reach in [ta, tb] (c: f's Bernstein coefficients there) when f keeps its sign or the
+  // features' boxes are apart; otherwise halve, down to kMaxDepth. Depth first, on an explicit stack.
+  struct Window {
+    double ta, tb;
+    std::array<double, 4> c;
+    int depth;
   };
+  std::array<Window, 2 * kMaxDepth + 2> stack;
+  int top = 0;
   std::array<double, 4> l, h;
   halve(b, l, h);  // the whole step failed stages 1 and 2 already
-  return !(apart(apart, 0.0, 0.5, l, 1) && apart(apart, 0.5, 1.0, h, 1));
+  stack[top++] = {0.5, 1.0, h, 1};
+  stack[top++] = {0.0, 0.5, l, 1};
+  while (top > 0) {
+    const Window w = stack[--top];
+    const auto& c = w.c;
+    const bool above = c[0] > t && c[1] > t && c[2] > t && c[3] > t;
+    const bool below = c[0] < -t && c[1] < -t && c[2] < -t && c[3] < -t;
+    if (above || below) continue;
+    bool apart = false;
+    for (int k = 0; k < 3 && !apart; ++k) {
+      double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+      for (int i = 0; i < 4; ++i) {
+        const int f = i < split ? 0 : 1;
+        const double xa = x0[i][k] + w.ta * d[i][k], xb = x0[i][k] + w.tb * d[i][k];
+        lo[f] = std::min({lo[f], xa, xb});
+        hi[f] = std::max({hi[f], xa, xb});
+      }
+      apart = lo[0] - pad > hi[1] || lo[1] - pad > hi[0];
+    }
+    if (apart) continue;
+    if (w.depth == kMaxDepth) return true;
+    halve(c, l, h);
+    const double tm = 0.5 * (w.ta + w.tb);
+    stack[top++] = {tm, w.tb, h, w.depth + 1};
+    stack[top++] = {w.ta, tm, l, w.depth + 1};
+  }
+  return false;
 }
 
 }  // namespace ccdlab

@@ -9,17 +9,19 @@
 //   - the two features' boxes over the window (a linearly moving point stays between its positions at the
 //     window's ends), grown by the reach, may be disjoint on some axis.
 // Either proves that no contact within the reach happens in that window, which is then not split further;
-// when every window is proven, the pair is dropped. Rounding: positions at t are padded by 8u·M (M = the pair's
-// largest coordinate magnitude), the halvings by 16u·max|b|, on top of the 40u bound of the coefficients.
+// when every window is proven, the pair is dropped. The whole-step coefficients, their threshold and the reach
+// come from stage 2. Rounding: positions at t are padded by 8u·M (M = the pair's largest coordinate magnitude),
+// the division of b1, b2 by 3 and the halvings by 18u·max|b|, on top of stage 2's bound.
 #include <array>
 
 #include "framework/geometry/vec.hpp"
-#include "framework/primitive/tester.hpp"
+#include "framework/narrow/plane_filter.hpp"
 
 namespace ccdlab {
 
 /// VF: p = (v, f0, f1, f2); EE: p = (a0, a1, b0, b1). `vf` says which. Returns false when proven apart.
+/// Row `row` of `plane` holds what stage 2 computed for this pair (coefficients, threshold, reach).
 [[nodiscard]] bool split_filter_keeps(bool vf, const std::array<const Vec3*, 4>& p_t0,
-                                      const std::array<const Vec3*, 4>& p_t1, CullReach reach);
+                                      const std::array<const Vec3*, 4>& p_t1, const PlaneBatch& plane, std::size_t row);
 
 }  // namespace ccdlab

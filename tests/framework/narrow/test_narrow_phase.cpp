@@ -55,7 +55,7 @@ PlaneBatch random_plane_batch(std::size_t n, std::mt19937& rng) {
 
 TEST(PlaneFilter, EverySimdTargetAgreesWithThePlainVersion) {
   std::mt19937 rng(3);
-  const PlaneBatch batch = random_plane_batch(5003, rng);
+  PlaneBatch batch = random_plane_batch(5003, rng);
   for (CullReach reach : {CullReach{0, 0}, CullReach{0, 2e-9}, CullReach{1e-3, 2e-9}}) {
     std::vector<std::uint8_t> expect(batch.size());
     std::size_t culled = 0;
@@ -94,9 +94,9 @@ TEST(PlaneFilter, NeverDropsAPairTheFloatTesterReports) {
       hits += hit_vf + hit_ee;
       culled += !keep[0] + !keep[1];
       const bool split_vf = split_filter_keeps(true, {&q.v_t0, &q.f0_t0, &q.f1_t0, &q.f2_t0},
-                                               {&q.v_t1, &q.f0_t1, &q.f1_t1, &q.f2_t1}, reach);
+                                               {&q.v_t1, &q.f0_t1, &q.f1_t1, &q.f2_t1}, b, 0);
       const bool split_ee = split_filter_keeps(false, {&r.ea0_t0, &r.ea1_t0, &r.eb0_t0, &r.eb1_t0},
-                                               {&r.ea0_t1, &r.ea1_t1, &r.eb0_t1, &r.eb1_t1}, reach);
+                                               {&r.ea0_t1, &r.ea1_t1, &r.eb0_t1, &r.eb1_t1}, b, 1);
       split_culled += (keep[0] && !split_vf) + (keep[1] && !split_ee);
       if (hit_vf) {
         ASSERT_TRUE(keep[0] && split_vf) << "eta " << eta << " query " << i;
