@@ -124,25 +124,16 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   }
   scratch.keep.resize(n);
   plane_filter(plane, reach, scratch.keep.data());
-  std::size_t plane_kept = 0;
-  for (std::uint8_t k : scratch.keep) plane_kept += k;
+  compact(batch, scratch.keep);
+  plane.compact(scratch.keep.data());
+  const std::size_t plane_kept = batch.vf.size() + batch.ee.size();
   c.plane_culled += n - plane_kept;
   const auto t_split = Clock::now();
   c.plane_ns += ns_since(t);
-  // Stage 3 on stage 2's survivors, reusing its coefficients (row i of the plane batch).
-  for (std::size_t i = 0; i < nvf; ++i) {
-    if (!scratch.keep[i]) continue;
-    const Index v = batch.vf[i].v;
-    const Face& f = mesh_.face(batch.vf[i].f);
-    scratch.keep[i] = split_filter_keeps(true, {&x0[v], &x0[f[0]], &x0[f[1]], &x0[f[2]]},
-                                         {&x1[v], &x1[f[0]], &x1[f[1]], &x1[f[2]]}, plane, i);
-  }
-  for (std::size_t i = nvf; i < n; ++i) {
-    if (!scratch.keep[i]) continue;
-    const Edge &a = mesh_.edge(batch.ee[i - nvf].a), &b = mesh_.edge(batch.ee[i - nvf].b);
-    scratch.keep[i] = split_filter_keeps(false, {&x0[a[0]], &x0[a[1]], &x0[b[0]], &x0[b[1]]},
-                                         {&x1[a[0]], &x1[a[1]], &x1[b[0]], &x1[b[1]]}, plane, i);
-  }
+  // Stage 3 on stage 2's survivors, from the coefficients, threshold and reach stage 2 left in the rows.
+  scratch.keep.assign(plane_kept, 1);
+  split_filter(plane, 0, batch.vf.size(), true, scratch.keep.data());
+  split_filter(plane, batch.vf.size(), plane_kept, false, scratch.keep.data());
   compact(batch, scratch.keep);
   c.split_culled += plane_kept - batch.vf.size() - batch.ee.size();
   c.split_ns += ns_since(t_split);

@@ -99,6 +99,20 @@ void PlaneBatch::resize(std::size_t n) {
   for (auto& c : out_) c.resize(padded);
 }
 
+std::size_t PlaneBatch::compact(const std::uint8_t* keep) {
+  // The kept rows' indices once, then each column gathered forward in place (index j ≤ kept[j]).
+  kept_.clear();
+  for (std::size_t i = 0; i < size_; ++i)
+    if (keep[i]) kept_.push_back(i);
+  auto squeeze = [&](std::vector<double>& c) {
+    for (std::size_t j = 0; j < kept_.size(); ++j) c[j] = c[kept_[j]];
+  };
+  for (auto& c : col_) squeeze(c);
+  for (auto& c : out_) squeeze(c);
+  size_ = kept_.size();
+  return size_;
+}
+
 void plane_filter(PlaneBatch& batch, CullReach reach, std::uint8_t* keep) {
   const double* cols[PlaneBatch::kColumns];
   for (int c = 0; c < PlaneBatch::kColumns; ++c) cols[c] = batch.column(c);

@@ -49,10 +49,14 @@ class PlaneBatch {
   enum Result { Q0, Q1x3, Q2x3, Q3, Threshold, Reach, kResults };
   [[nodiscard]] double result(int r, std::size_t i) const { return out_[r][i]; }
   [[nodiscard]] double* result_column(int r) { return out_[r].data(); }
+  [[nodiscard]] const double* result_column(int r) const { return out_[r].data(); }
+  /// Keeps the rows whose keep flag is set (inputs and results), in order; returns the new size.
+  std::size_t compact(const std::uint8_t* keep);
 
  private:
   std::array<std::vector<double>, kColumns> col_;
   std::array<std::vector<double>, kResults> out_;
+  std::vector<std::size_t> kept_;  ///< compact's scratch
   std::size_t size_ = 0;
 };
 

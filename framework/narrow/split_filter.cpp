@@ -1,82 +1,185 @@
+// Highway compiles this file once per SIMD target (foreach_target.h) and picks one at run time. The SIMD kernel
+// and the plain reference below evaluate the same expressions in the same order (-ffp-contract=off).
 #include "framework/narrow/split_filter.hpp"
 
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "framework/narrow/split_filter.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#ifndef CCDLAB_SPLIT_FILTER_CONSTANTS
+#define CCDLAB_SPLIT_FILTER_CONSTANTS
+namespace ccdlab::split_detail {
+constexpr int kLevels = 4;                 // 2^4 = 16 windows
+constexpr int kWindows = 1 << kLevels;
+constexpr double kU = 0x1p-53;
+constexpr double kCoefSlack = 18 * kU;     // ÷3 and four halvings, relative to max|b|
+constexpr double kThresholdSlack = 1 + 4 * kU;
+constexpr double kPadSlack = 32 * kU;      // positions at k/16 in the moving frame, relative to M
+}  // namespace ccdlab::split_detail
+#endif
+
+HWY_BEFORE_NAMESPACE();
+namespace ccdlab {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+using namespace split_detail;
+
+template <bool kVf>
+void SplitRange(const double* const* col, const double* const* res, std::size_t begin, std::size_t end,
+                std::uint8_t* keep) {
+  const hn::ScalableTag<double> d;
+  using V = hn::Vec<decltype(d)>;
+  const std::size_t N = hn::Lanes(d);
+  const V half = hn::Set(d, 0.5), third = hn::Set(d, 3.0), zero = hn::Zero(d);
+  for (std::size_t i = begin; i < end; i += N) {
+    auto load = [&](int c) { return hn::LoadU(d, col[c] + i); };
+    // Relative points at t0 (p) and their motion (m): A, B, C of stage 2.
+    V p[9], m[9];
+    for (int k = 0; k < 3; ++k) {
+      const V a0 = load(PlaneBatch::A0x + k), a1 = load(PlaneBatch::A1x + k);
+      const V b0 = load(PlaneBatch::B0x + k), b1 = load(PlaneBatch::B1x + k);
+      const V c0 = load(PlaneBatch::C0x + k), c1 = load(PlaneBatch::C1x + k);
+      p[k] = a0, p[3 + k] = b0, p[6 + k] = c0;
+      m[k] = hn::Sub(a1, a0), m[3 + k] = hn::Sub(b1, b0), m[6 + k] = hn::Sub(c1, c0);
+    }
+    V M = zero;
+    for (int k = 0; k < 9; ++k) M = hn::Max(M, hn::Max(hn::Abs(p[k]), hn::Abs(hn::Add(p[k], m[k]))));
+    V b[4] = {hn::LoadU(d, res[PlaneBatch::Q0] + i), hn::Div(hn::LoadU(d, res[PlaneBatch::Q1x3] + i), third),
+              hn::Div(hn::LoadU(d, res[PlaneBatch::Q2x3] + i), third), hn::LoadU(d, res[PlaneBatch::Q3] + i)};
+    const V bmax = hn::Max(hn::Max(hn::Abs(b[0]), hn::Abs(b[1])), hn::Max(hn::Abs(b[2]), hn::Abs(b[3])));
+    const V t = hn::Add(hn::Mul(hn::LoadU(d, res[PlaneBatch::Threshold] + i), hn::Set(d, kThresholdSlack)),
+                        hn::Mul(hn::Set(d, kCoefSlack), bmax));
+    const V neg_t = hn::Neg(t);
+    const V pad = hn::Add(hn::Add(hn::Mul(hn::LoadU(d, res[PlaneBatch::Reach] + i), hn::Set(d, 1 + 1e-12)),
+                                  hn::Mul(hn::Set(d, kPadSlack), M)),
+                          hn::Set(d, 1e-300));
+    // Coefficients on the 16 windows: kLevels rounds of halving, in place, window order kept.
+    V c[kWindows][4];
+    for (int j = 0; j < 4; ++j) c[0][j] = b[j];
+    for (int level = 0, count = 1; level < kLevels; ++level, count *= 2)
+      for (int w = count - 1; w >= 0; --w) {
+        const V b0 = c[w][0], b1 = c[w][1], b2 = c[w][2], b3 = c[w][3];
+        const V b01 = hn::Mul(half, hn::Add(b0, b1)), b12 = hn::Mul(half, hn::Add(b1, b2)),
+                b23 = hn::Mul(half, hn::Add(b2, b3));
+        const V b012 = hn::Mul(half, hn::Add(b01, b12)), b123 = hn::Mul(half, hn::Add(b12, b23));
+        const V mid = hn::Mul(half, hn::Add(b012, b123));
+        c[2 * w][0] = b0, c[2 * w][1] = b01, c[2 * w][2] = b012, c[2 * w][3] = mid;
+        c[2 * w + 1][0] = mid, c[2 * w + 1][1] = b123, c[2 * w + 1][2] = b23, c[2 * w + 1][3] = b3;
+      }
+    auto all_apart = hn::Eq(zero, zero);  // all true
+    V prev[9];
+    for (int k = 0; k < 9; ++k) prev[k] = p[k];
+    for (int w = 0; w < kWindows; ++w) {
+      const V s = hn::Set(d, double(w + 1) / kWindows);
+      V next[9];
+      for (int k = 0; k < 9; ++k) next[k] = hn::Add(p[k], hn::Mul(s, m[k]));
+      auto sign = hn::Or(hn::And(hn::And(hn::Gt(c[w][0], t), hn::Gt(c[w][1], t)), hn::And(hn::Gt(c[w][2], t), hn::Gt(c[w][3], t))),
+                         hn::And(hn::And(hn::Lt(c[w][0], neg_t), hn::Lt(c[w][1], neg_t)),
+                                 hn::And(hn::Lt(c[w][2], neg_t), hn::Lt(c[w][3], neg_t))));
+      for (int k = 0; k < 3; ++k) {
+        const V a0 = prev[k], a1 = next[k], b0 = prev[3 + k], b1 = next[3 + k], c0 = prev[6 + k], c1 = next[6 + k];
+        V lo1, hi1, lo2, hi2;
+        if constexpr (kVf) {  // vertex A against face {0, B, C}
+          lo1 = hn::Min(a0, a1), hi1 = hn::Max(a0, a1);
+          lo2 = hn::Min(zero, hn::Min(hn::Min(b0, b1), hn::Min(c0, c1)));
+          hi2 = hn::Max(zero, hn::Max(hn::Max(b0, b1), hn::Max(c0, c1)));
+        } else {  // edge {0, B} against edge {A, A + C}
+          const V e0 = hn::Add(a0, c0), e1 = hn::Add(a1, c1);
+          lo1 = hn::Min(zero, hn::Min(b0, b1)), hi1 = hn::Max(zero, hn::Max(b0, b1));
+          lo2 = hn::Min(hn::Min(a0, a1), hn::Min(e0, e1)), hi2 = hn::Max(hn::Max(a0, a1), hn::Max(e0, e1));
+        }
+        sign = hn::Or(sign, hn::Or(hn::Gt(hn::Sub(lo1, pad), hi2), hn::Gt(hn::Sub(lo2, pad), hi1)));
+      }
+      all_apart = hn::And(all_apart, sign);
+      for (int k = 0; k < 9; ++k) prev[k] = next[k];
+    }
+    std::uint8_t bits[8] = {};
+    hn::StoreMaskBits(d, all_apart, bits);
+    for (std::size_t j = 0; j < N && i + j < end; ++j)
+      if ((bits[j / 8] >> (j % 8)) & 1) keep[i + j] = 0;
+  }
+}
+
+void SplitFilter(const double* const* col, const double* const* res, std::size_t begin, std::size_t end, bool vf,
+                 std::uint8_t* keep) {
+  if (vf) SplitRange<true>(col, res, begin, end, keep);
+  else SplitRange<false>(col, res, begin, end, keep);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace ccdlab
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
 #include <algorithm>
 #include <cmath>
 
 namespace ccdlab {
-namespace {
 
-constexpr double u = 0x1p-53;
-/// Windows down to 1/16 of the step: deeper ones rarely pay for their boxes.
-constexpr int kMaxDepth = 4;
-static_assert(kMaxDepth <= 8, "the rounding bound below covers 8 halvings");
+HWY_EXPORT(SplitFilter);
 
-
-/// Bernstein coefficients of a cubic on [0, 1/2] and [1/2, 1] (de Casteljau at 1/2; halvings are exact but
-/// for the sums' rounding).
-void halve(const std::array<double, 4>& b, std::array<double, 4>& lo, std::array<double, 4>& hi) {
-  const double b01 = 0.5 * (b[0] + b[1]), b12 = 0.5 * (b[1] + b[2]), b23 = 0.5 * (b[2] + b[3]);
-  const double b012 = 0.5 * (b01 + b12), b123 = 0.5 * (b12 + b23), mid = 0.5 * (b012 + b123);
-  lo = {b[0], b01, b012, mid};
-  hi = {mid, b123, b23, b[3]};
+void split_filter(const PlaneBatch& plane, std::size_t begin, std::size_t end, bool vf, std::uint8_t* keep) {
+  const double* cols[PlaneBatch::kColumns];
+  for (int c = 0; c < PlaneBatch::kColumns; ++c) cols[c] = plane.column(c);
+  const double* res[PlaneBatch::kResults];
+  for (int r = 0; r < PlaneBatch::kResults; ++r) res[r] = plane.result_column(r);
+  HWY_DYNAMIC_DISPATCH(SplitFilter)(cols, res, begin, end, vf, keep);
 }
 
-}  // namespace
-
-bool split_filter_keeps(bool vf, const std::array<const Vec3*, 4>& p0, const std::array<const Vec3*, 4>& p1,
-                        const PlaneBatch& plane, std::size_t row) {
-  const std::array<double, 4> b = {plane.result(PlaneBatch::Q0, row), plane.result(PlaneBatch::Q1x3, row) / 3,
-                                   plane.result(PlaneBatch::Q2x3, row) / 3, plane.result(PlaneBatch::Q3, row)};
+bool split_filter_keeps(const PlaneBatch& plane, std::size_t i, bool vf) {
+  using namespace split_detail;
+  auto col = [&](int c) { return plane.column(c)[i]; };
+  double p[9], m[9];
+  for (int k = 0; k < 3; ++k) {
+    p[k] = col(PlaneBatch::A0x + k), p[3 + k] = col(PlaneBatch::B0x + k), p[6 + k] = col(PlaneBatch::C0x + k);
+    m[k] = col(PlaneBatch::A1x + k) - p[k], m[3 + k] = col(PlaneBatch::B1x + k) - p[3 + k];
+    m[6 + k] = col(PlaneBatch::C1x + k) - p[6 + k];
+  }
   double M = 0;
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k) M = std::max({M, std::abs((*p0[i])[k]), std::abs((*p1[i])[k])});
-  const double bmax = std::max({std::abs(b[0]), std::abs(b[1]), std::abs(b[2]), std::abs(b[3])});
-  // Stage 2's threshold, + u·max|b| for the division by 3 and 2u·max|b| per halving (kMaxDepth ≤ 8 of them).
-  const double t = plane.result(PlaneBatch::Threshold, row) * (1 + 4 * u) + 18 * u * bmax;
-  const double pad = plane.result(PlaneBatch::Reach, row) * (1 + 1e-12) + 8 * u * M + 1e-300;
-  const int split = vf ? 1 : 2;  // first feature = points [0, split), second = [split, 4)
-  // Positions at t: x0 + t·d, per point and axis, in plain arrays (the window loop below runs often).
-  double x0[4][3], d[4][3];
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k) x0[i][k] = (*p0[i])[k], d[i][k] = (*p1[i])[k] - (*p0[i])[k];
-  // No contact within the reach in [ta, tb] (c: f's Bernstein coefficients there) when f keeps its sign or the
-  // features' boxes are apart; otherwise halve, down to kMaxDepth. Depth first, on an explicit stack.
-  struct Window {
-    double ta, tb;
-    std::array<double, 4> c;
-    int depth;
-  };
-  std::array<Window, 2 * kMaxDepth + 2> stack;
-  int top = 0;
-  std::array<double, 4> l, h;
-  halve(b, l, h);  // the whole step failed stages 1 and 2 already
-  stack[top++] = {0.5, 1.0, h, 1};
-  stack[top++] = {0.0, 0.5, l, 1};
-  while (top > 0) {
-    const Window w = stack[--top];
-    const auto& c = w.c;
-    const bool above = c[0] > t && c[1] > t && c[2] > t && c[3] > t;
-    const bool below = c[0] < -t && c[1] < -t && c[2] < -t && c[3] < -t;
-    if (above || below) continue;
-    bool apart = false;
-    for (int k = 0; k < 3 && !apart; ++k) {
-      double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-      for (int i = 0; i < 4; ++i) {
-        const int f = i < split ? 0 : 1;
-        const double xa = x0[i][k] + w.ta * d[i][k], xb = x0[i][k] + w.tb * d[i][k];
-        lo[f] = std::min({lo[f], xa, xb});
-        hi[f] = std::max({hi[f], xa, xb});
-      }
-      apart = lo[0] - pad > hi[1] || lo[1] - pad > hi[0];
+  for (int k = 0; k < 9; ++k) M = std::max(M, std::max(std::abs(p[k]), std::abs(p[k] + m[k])));
+  const double b[4] = {plane.result(PlaneBatch::Q0, i), plane.result(PlaneBatch::Q1x3, i) / 3.0,
+                       plane.result(PlaneBatch::Q2x3, i) / 3.0, plane.result(PlaneBatch::Q3, i)};
+  const double bmax = std::max(std::max(std::abs(b[0]), std::abs(b[1])), std::max(std::abs(b[2]), std::abs(b[3])));
+  const double t = plane.result(PlaneBatch::Threshold, i) * kThresholdSlack + kCoefSlack * bmax;
+  const double pad = (plane.result(PlaneBatch::Reach, i) * (1 + 1e-12) + kPadSlack * M) + 1e-300;
+  double c[kWindows][4];
+  for (int j = 0; j < 4; ++j) c[0][j] = b[j];
+  for (int level = 0, count = 1; level < kLevels; ++level, count *= 2)
+    for (int w = count - 1; w >= 0; --w) {
+      const double b0 = c[w][0], b1 = c[w][1], b2 = c[w][2], b3 = c[w][3];
+      const double b01 = 0.5 * (b0 + b1), b12 = 0.5 * (b1 + b2), b23 = 0.5 * (b2 + b3);
+      const double b012 = 0.5 * (b01 + b12), b123 = 0.5 * (b12 + b23), mid = 0.5 * (b012 + b123);
+      c[2 * w][0] = b0, c[2 * w][1] = b01, c[2 * w][2] = b012, c[2 * w][3] = mid;
+      c[2 * w + 1][0] = mid, c[2 * w + 1][1] = b123, c[2 * w + 1][2] = b23, c[2 * w + 1][3] = b3;
     }
-    if (apart) continue;
-    if (w.depth == kMaxDepth) return true;
-    halve(c, l, h);
-    const double tm = 0.5 * (w.ta + w.tb);
-    stack[top++] = {tm, w.tb, h, w.depth + 1};
-    stack[top++] = {w.ta, tm, l, w.depth + 1};
+  double prev[9];
+  std::copy(p, p + 9, prev);
+  for (int w = 0; w < kWindows; ++w) {
+    const double s = double(w + 1) / kWindows;
+    double next[9];
+    for (int k = 0; k < 9; ++k) next[k] = p[k] + s * m[k];
+    bool apart = (c[w][0] > t && c[w][1] > t && c[w][2] > t && c[w][3] > t) ||
+                 (c[w][0] < -t && c[w][1] < -t && c[w][2] < -t && c[w][3] < -t);
+    for (int k = 0; k < 3; ++k) {
+      const double a0 = prev[k], a1 = next[k], b0 = prev[3 + k], b1 = next[3 + k], c0 = prev[6 + k], c1 = next[6 + k];
+      double lo1, hi1, lo2, hi2;
+      if (vf) {
+        lo1 = std::min(a0, a1), hi1 = std::max(a0, a1);
+        lo2 = std::min(0.0, std::min(std::min(b0, b1), std::min(c0, c1)));
+        hi2 = std::max(0.0, std::max(std::max(b0, b1), std::max(c0, c1)));
+      } else {
+        const double e0 = a0 + c0, e1 = a1 + c1;
+        lo1 = std::min(0.0, std::min(b0, b1)), hi1 = std::max(0.0, std::max(b0, b1));
+        lo2 = std::min(std::min(a0, a1), std::min(e0, e1)), hi2 = std::max(std::max(a0, a1), std::max(e0, e1));
+      }
+      apart = apart || (lo1 - pad > hi2) || (lo2 - pad > hi1);
+    }
+    if (!apart) return true;
+    std::copy(next, next + 9, prev);
   }
   return false;
 }
 
 }  // namespace ccdlab
+#endif  // HWY_ONCE
