@@ -1,5 +1,6 @@
-// `ccdlab bench CONFIG.yaml [--set k=v …] [--schedulers LIST] [--threads LIST] [--rounds R] [--cores LIST]`:
-// every scheduler × thread count on the config's scene, in alternating rounds (A B C …, then … C B A) so drift
+// `ccdlab bench CONFIG.yaml [--set k=v …] [--schedulers LIST] [--threads LIST] [--narrow LIST] [--rounds R]
+//  [--cores LIST]`: every narrow mode × scheduler × thread count on the config's scene (a scalar narrow phase is
+// labelled SCHEDULER/scalar), in alternating rounds (A B C …, then … C B A) so drift
 // hits all alike; per configuration the median over rounds of the mean ms per step. Checks that every
 // configuration found the identical contact sets (exit 1 otherwise), reports the counters that explain speed
 // (BV tests and λ, front size, serial part, thread imbalance), and replays the recorded task costs of the
@@ -26,6 +27,9 @@ namespace {
 struct Config {
   std::string scheduler;
   int threads;
+  NarrowMode narrow = NarrowMode::batched;
+  /// How the configuration is named in tables and files: the scheduler, "/scalar" for the scalar narrow phase.
+  [[nodiscard]] std::string label() const { return narrow == NarrowMode::batched ? scheduler : scheduler + "/scalar"; }
 };
 
 struct Measured {
@@ -96,9 +100,15 @@ int bench_command(const BenchOptions& o) {
   for (int f = 0; f < scene.num_frames(); ++f) frames.push_back(scene.frame(f));  // outside the timing
   const int steps = scene.num_steps();
 
+  std::vector<NarrowMode> narrow_modes;
+  for (const auto& n : parse_names(o.narrow)) {
+    if (n != "batched" && n != "scalar") fail("--narrow: expected names from batched, scalar, got '{}'", n);
+    narrow_modes.push_back(parse_narrow_mode(n));
+  }
   std::vector<Config> configs;
-  for (const auto& s : schedulers)
-    for (int t : threads) configs.push_back({s, t});
+  for (NarrowMode n : narrow_modes)
+    for (const auto& s : schedulers)
+      for (int t : threads) configs.push_back({s, t, n});
   std::vector<Measured> measured(configs.size());
 
   // Round −1 warms caches, page tables and the OpenMP thread pools; it is not timed into any result.
@@ -112,6 +122,7 @@ int bench_command(const BenchOptions& o) {
       c.scheduler = {configs[i].scheduler, reg.schedulers.find(configs[i].scheduler)->defaults()};
       if (config.scheduler.name == configs[i].scheduler) c.scheduler = config.scheduler;  // keep --set params
       c.threads = configs[i].threads;
+      c.narrow.mode = configs[i].narrow;
       CcdPipeline pipeline(scene.topology(), scene.bodies(), make_strategies(c, reg));
       Measured& m = measured[i];
       double total = 0;
@@ -140,10 +151,10 @@ int bench_command(const BenchOptions& o) {
       }
       if (warmup || round == 0) {
         if (round == 0 && hash != m.hash)
-          fail("bench: {} x{} changed its answer between the warm-up and round 1", configs[i].scheduler, configs[i].threads);
+          fail("bench: {} x{} changed its answer between the warm-up and round 1", configs[i].label(), configs[i].threads);
         m.hash = hash;
       } else if (hash != m.hash) {
-        fail("bench: {} x{} changed its answer between rounds", configs[i].scheduler, configs[i].threads);
+        fail("bench: {} x{} changed its answer between rounds", configs[i].label(), configs[i].threads);
       }
       if (!warmup) m.ms_per_step.push_back(total / steps);
       progress.update(++done);
@@ -158,13 +169,14 @@ int bench_command(const BenchOptions& o) {
     if (spread > kNoiseThreshold)
       fmt::print(stderr, "ccdlab: warning: bench: {} x{}: rounds differ by {:.0f}% ({:.3f} to {:.3f} ms/step), above the "
                  "{:.0f}% noise threshold: other load on the machine? more --rounds?\n",
-                 configs[i].scheduler, configs[i].threads, 100 * spread, *lo, *hi, 100 * kNoiseThreshold);
+                 configs[i].label(), configs[i].threads, 100 * spread, *lo, *hi, 100 * kNoiseThreshold);
   }
 
   // Reference: sequential at 1 thread (or the first configuration).
-  std::size_t ref = 0;
+  std::size_t ref = configs.size();
   for (std::size_t i = 0; i < configs.size(); ++i)
-    if (configs[i].scheduler == "sequential" && configs[i].threads == 1) ref = i;
+    if (ref == configs.size() && configs[i].scheduler == "sequential" && configs[i].threads == 1) ref = i;
+  if (ref == configs.size()) ref = 0;
   const double ref_ms = median(measured[ref].ms_per_step);
   const double ref_min = *std::min_element(measured[ref].ms_per_step.begin(), measured[ref].ms_per_step.end());
   bool identical = true;
@@ -191,7 +203,7 @@ int bench_command(const BenchOptions& o) {
     fmt::print("ccdlab bench {} — {}, {} steps, {} rounds (alternating), rev {}\n", config.name, scene.description(),
                steps, o.rounds, rev);
     fmt::print("k={} tester={}; speed-up against {} x{} = {:.2f} ms/step\n\n", config.k, config.tester.name,
-               configs[ref].scheduler, configs[ref].threads, ref_ms);
+               configs[ref].label(), configs[ref].threads, ref_ms);
     fmt::print("{:>10} {:>3} {:>9} {:>7} {:>9} {:>7} {:>11} {:>6} {:>10} {:>9} {:>9} {:>9} {:>10}\n", "scheduler", "thr",
                "ms/step", "speedup", "min ms", "(min)", "BV tests", "lambda", "traverse", "serial", "imbal.", "front", "front MB");
   }
@@ -203,11 +215,11 @@ int bench_command(const BenchOptions& o) {
     const double lambda = seq_bv ? double(m.bv_tests) / double(seq_bv) : 0;
     const double imb = m.imbalance_n ? m.imbalance_sum / m.imbalance_n : 0;
     csv << fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.4f},{},{},{:.4f},{:.4f},{:.4f},{},{},{},{},{},{:016x},{}\n",
-                       configs[i].scheduler, configs[i].threads, ms, ms_min, ref_ms / ms, ref_min / ms_min,
+                       configs[i].label(), configs[i].threads, ms, ms_min, ref_ms / ms, ref_min / ms_min,
                        m.bv_tests / steps, lambda,
                        m.candidates / steps, m.elementary_tests / steps, m.traverse_ms / steps, m.serial_ms / steps, imb,
                        m.front_max, m.front_bytes_max, m.sprouted / steps, m.pruned / steps, m.rebuilds, m.hash, rev);
-    nlohmann::json row = {{"scheduler", configs[i].scheduler}, {"threads", configs[i].threads}, {"ms_per_step", ms},
+    nlohmann::json row = {{"scheduler", configs[i].label()}, {"threads", configs[i].threads}, {"ms_per_step", ms},
                           {"ms_per_step_min", ms_min}, {"speedup", ref_ms / ms}, {"speedup_min", ref_min / ms_min}, {"bv_tests_per_step", m.bv_tests / steps}, {"lambda", lambda},
                           {"traverse_ms_per_step", m.traverse_ms / steps}, {"serial_ms_per_step", m.serial_ms / steps},
                           {"imbalance", imb}, {"front_nodes_max", m.front_max}, {"front_bytes_max", m.front_bytes_max},
@@ -216,7 +228,7 @@ int bench_command(const BenchOptions& o) {
     jsonl << nlohmann::json{{"type", "config_result"}, {"result", row}}.dump() << "\n";
     if (!o.json)
       fmt::print("{:>10} {:>3} {:>9.2f} {:>6.2f}x {:>9.2f} {:>6.2f}x {:>11} {:>6.3f} {:>10.2f} {:>9.2f} {:>9.2f} {:>9} {:>10.2f}\n",
-                 configs[i].scheduler, configs[i].threads, ms, ref_ms / ms, ms_min, ref_min / ms_min, m.bv_tests / steps,
+                 configs[i].label(), configs[i].threads, ms, ref_ms / ms, ms_min, ref_min / ms_min, m.bv_tests / steps,
                  lambda,
                  m.traverse_ms / steps, m.serial_ms / steps, imb, m.front_max, m.front_bytes_max / 1e6);
   }
@@ -224,20 +236,20 @@ int bench_command(const BenchOptions& o) {
   // Simulated scaling from the 1-thread task costs; validated where a measured run exists.
   nlohmann::json sim_rows = nlohmann::json::array();
   if (!o.json) fmt::print("\nsimulated ms/step (speed-up vs {} x1) from 1-thread task costs; [measured] where run:\n",
-                          configs[ref].scheduler);
+                          configs[ref].label());
   for (std::size_t i = 0; i < configs.size(); ++i) {
     if (configs[i].threads != 1) continue;
-    std::string line = fmt::format("{:>10}", configs[i].scheduler);
+    std::string line = fmt::format("{:>10}", configs[i].label());
     for (int n : cores) {
       double predicted = 0;
       for (const auto& step_traces : measured[i].median_traces()) predicted += simulate_step(step_traces, n);
       predicted /= steps;
       double measured_ms = -1;
       for (std::size_t j = 0; j < configs.size(); ++j)
-        if (configs[j].scheduler == configs[i].scheduler && configs[j].threads == n) measured_ms = median(measured[j].ms_per_step);
-      scaling << fmt::format("{},{},{:.4f},{:.4f},{}\n", configs[i].scheduler, n, predicted, ref_ms / predicted,
+        if (configs[j].label() == configs[i].label() && configs[j].threads == n) measured_ms = median(measured[j].ms_per_step);
+      scaling << fmt::format("{},{},{:.4f},{:.4f},{}\n", configs[i].label(), n, predicted, ref_ms / predicted,
                              measured_ms < 0 ? std::string() : fmt::format("{:.4f}", measured_ms));
-      sim_rows.push_back({{"scheduler", configs[i].scheduler}, {"cores", n}, {"predicted_ms_per_step", predicted},
+      sim_rows.push_back({{"scheduler", configs[i].label()}, {"cores", n}, {"predicted_ms_per_step", predicted},
                           {"predicted_speedup", ref_ms / predicted},
                           {"measured_ms_per_step", measured_ms < 0 ? nlohmann::json() : nlohmann::json(measured_ms)}});
       line += measured_ms < 0 ? fmt::format(" | {}: {:.2f} ({:.2f}x)", n, predicted, ref_ms / predicted)
@@ -263,8 +275,8 @@ int bench_command(const BenchOptions& o) {
         acc[1] += simulate_phase(t, probe) / steps;
         acc[2] += t.serial_ms / steps;
       }
-    nlohmann::json row = {{"type", "phases"}, {"scheduler", configs[i].scheduler}, {"cores", probe}};
-    std::string line = fmt::format("{:>10}", configs[i].scheduler);
+    nlohmann::json row = {{"type", "phases"}, {"scheduler", configs[i].label()}, {"cores", probe}};
+    std::string line = fmt::format("{:>10}", configs[i].label());
     for (const auto& [name, acc] : phases) {
       row["phases"][name] = {{"ms_1", acc[0]}, {"ms_n", acc[1]}, {"serial_ms", acc[2]}};
       line += fmt::format(" | {} {:.1f}->{:.1f} ({:.1f})", name, acc[0], acc[1], acc[2]);

@@ -34,6 +34,7 @@ struct BenchOptions {
   std::vector<std::string> overrides;
   std::string schedulers = "sequential,phc,front,static";
   std::string threads = "1,2";
+  std::string narrow = "batched";  ///< narrow modes, e.g. "batched,scalar" to measure their ratio side by side
   std::string cores = "1,2,4,8,16,32,64";
   int rounds = 3;
   bool json = false;

@@ -64,6 +64,8 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("config", bench.config, "experiment YAML file (scene, k, tester, output.dir)")->required();
   bench_cmd->add_option("--set", bench.overrides, "override a config key (repeatable)");
   bench_cmd->add_option("--schedulers", bench.schedulers, "comma-separated schedulers")->capture_default_str();
+  bench_cmd->add_option("--narrow", bench.narrow, "comma-separated narrow modes: batched, scalar (side by side)")
+      ->capture_default_str();
   bench_cmd->add_option("--threads", bench.threads, "comma-separated thread counts")->capture_default_str();
   bench_cmd->add_option("--cores", bench.cores, "simulated core counts")->capture_default_str();
   bench_cmd->add_option("--rounds", bench.rounds, "alternating rounds")->capture_default_str();
