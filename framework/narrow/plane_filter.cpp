@@ -91,7 +91,7 @@ HWY_EXPORT(PlaneFilter);
 
 void PlaneBatch::resize(std::size_t n) {
   size_ = n;
-  const std::size_t padded = (n + kPad - 1) / kPad * kPad;
+  const std::size_t padded = (n + kPad - 1) / kPad * kPad + kPad;
   for (auto& c : col_) {
     c.resize(padded);
     std::fill(c.begin() + std::ptrdiff_t(n), c.end(), 0.0);  // padding rows: zero, kept, never read back

@@ -28,7 +28,8 @@ namespace ccdlab {
 class PlaneBatch {
  public:
   enum Column { A0x, A0y, A0z, A1x, A1y, A1z, B0x, B0y, B0z, B1x, B1y, B1z, C0x, C0y, C0z, C1x, C1y, C1z, Dx, Dy, Dz, kColumns };
-  /// Columns are padded to a multiple of this many doubles (the widest vector, AVX-512, is 8).
+  /// Columns hold at least this many doubles beyond the last row (the widest vector, AVX-512, is 8), so a
+  /// kernel may load a full vector at any row below size() — stage 3 starts its EE rows at any index.
   static constexpr std::size_t kPad = 8;
 
   void resize(std::size_t n);
