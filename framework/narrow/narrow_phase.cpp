@@ -14,6 +14,15 @@ std::uint64_t ns_since(Clock::time_point t) {
   return std::uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t).count());
 }
 
+/// Counts one elementary test, its route and its hit (`tests`, `contacts`: the VF or EE counters); returns the hit.
+bool counted(const CcdHit& hit, std::uint64_t& tests, std::uint64_t& contacts, NarrowCounters& c) {
+  ++tests;
+  c.tests_filtered += hit.route == TestRoute::filter;
+  c.tests_fallback += hit.route == TestRoute::fallback;
+  contacts += hit.hit;
+  return hit.hit;
+}
+
 /// Keeps the pairs whose keep flag is set (VF flags first, then EE), in order.
 void compact(FeatureBatch& batch, const std::vector<std::uint8_t>& keep) {
   std::size_t i = 0;
@@ -147,23 +156,15 @@ void NarrowPhase::test(const FeatureBatch& batch, std::vector<Contact>& out, Nar
 }
 
 void NarrowPhase::test_vf(Index v, Index f, std::vector<Contact>& out, NarrowCounters& c) const {
-  ++c.vf_tests;
   const CcdHit hit = tester_.vertex_face(vf_query(v, f));
-  c.tests_filtered += hit.route == TestRoute::filter;
-  c.tests_fallback += hit.route == TestRoute::fallback;
-  if (!hit.hit) return;
-  ++c.contacts_vf;
+  if (!counted(hit, c.vf_tests, c.contacts_vf, c)) return;
   const Face& t = mesh_.face(f);
   out.push_back(Contact{ContactKind::vf, v, f, {v, t[0], t[1], t[2]}, hit.toi, hit.coords});
 }
 
 void NarrowPhase::test_ee(Index a, Index b, std::vector<Contact>& out, NarrowCounters& c) const {
-  ++c.ee_tests;
   const CcdHit hit = tester_.edge_edge(ee_query(a, b));
-  c.tests_filtered += hit.route == TestRoute::filter;
-  c.tests_fallback += hit.route == TestRoute::fallback;
-  if (!hit.hit) return;
-  ++c.contacts_ee;
+  if (!counted(hit, c.ee_tests, c.contacts_ee, c)) return;
   const Edge &ea = mesh_.edge(a), &eb = mesh_.edge(b);
   out.push_back(Contact{ContactKind::ee, a, b, {ea[0], ea[1], eb[0], eb[1]}, hit.toi, hit.coords});
 }

@@ -22,6 +22,36 @@ PipelineStrategies default_strategies(int k) {
   return s;
 }
 
+/// One step of a crumpled grid moving randomly, recording every feature pair gathered; returns them sorted
+/// (checked: each at most once, none joining a feature to itself) with the step's candidates.
+struct Gathered {
+  std::vector<VertexFacePair> vf;
+  std::vector<EdgeEdgePair> ee;
+  std::set<std::pair<Index, Index>> candidates;
+  [[nodiscard]] bool is_candidate(Index f, Index g) const { return candidates.count({std::min(f, g), std::max(f, g)}) > 0; }
+};
+Gathered gather_one_step(CcdPipeline& pipeline, const MeshData& g, unsigned seed, Positions* x0_out = nullptr,
+                         Positions* x1_out = nullptr) {
+  const TriMesh& mesh = pipeline.mesh();
+  pipeline.set_record_tested_pairs(true);
+  std::mt19937 rng(seed);
+  Positions x0 = test::crumple(g.positions, rng, 0.02), x1 = x0;
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (Vec3& p : x1) p += 0.12 * Vec3(u(rng), u(rng), u(rng));
+  StepResult r = pipeline.step(x0, x1);
+  Gathered out{r.tested_vf, r.tested_ee, {}};
+  std::sort(out.vf.begin(), out.vf.end());
+  std::sort(out.ee.begin(), out.ee.end());
+  EXPECT_EQ(std::adjacent_find(out.vf.begin(), out.vf.end()), out.vf.end()) << "a VF pair was tested twice";
+  EXPECT_EQ(std::adjacent_find(out.ee.begin(), out.ee.end()), out.ee.end()) << "an EE pair was tested twice";
+  for (const auto& p : out.vf) EXPECT_FALSE(contains_vertex(mesh.face(p.f), p.v));
+  for (const auto& p : out.ee) EXPECT_FALSE(shares_vertex(mesh.edge(p.a), mesh.edge(p.b)));
+  for (const FacePair& p : pipeline.last_candidates().pairs) out.candidates.insert({p.a, p.b});
+  if (x0_out) *x0_out = std::move(x0);
+  if (x1_out) *x1_out = std::move(x1);
+  return out;
+}
+
 TEST(Ownership, EveryFeatureHasOneIncidentOwner) {
   MeshData g = test::grid(7, 5);
   TriMesh mesh(Index(g.positions.size()), g.faces);
@@ -49,27 +79,14 @@ TEST(Ownership, FeaturePairsAreTestedExactlyOnceAndNoneIsLost) {
   TriMesh mesh(Index(g.positions.size()), g.faces);
   for (int k : {6, 18}) {
     CcdPipeline pipeline(mesh, single_cloth_body(mesh), default_strategies(k));
-    pipeline.set_record_tested_pairs(true);
-    std::mt19937 rng(5 + k);
-    Positions x0 = test::crumple(g.positions, rng, 0.02), x1 = x0;
-    std::uniform_real_distribution<double> u(-1, 1);
-    for (Vec3& p : x1) p += 0.12 * Vec3(u(rng), u(rng), u(rng));
-    StepResult r = pipeline.step(x0, x1);
-
-    auto vf = r.tested_vf;
-    auto ee = r.tested_ee;
-    std::sort(vf.begin(), vf.end());
-    std::sort(ee.begin(), ee.end());
-    EXPECT_EQ(std::adjacent_find(vf.begin(), vf.end()), vf.end()) << "a VF pair was tested twice";
-    EXPECT_EQ(std::adjacent_find(ee.begin(), ee.end()), ee.end()) << "an EE pair was tested twice";
-    for (const auto& p : vf) ASSERT_FALSE(contains_vertex(mesh.face(p.f), p.v));
-    for (const auto& p : ee) ASSERT_FALSE(shares_vertex(mesh.edge(p.a), mesh.edge(p.b)));
+    Positions x0, x1;
+    const Gathered gathered = gather_one_step(pipeline, g, 5 + k, &x0, &x1);
+    const auto& vf = gathered.vf;
+    const auto& ee = gathered.ee;
 
     // Exactly the pairs the rule promises: orphans, plus the owned features of every candidate face pair.
     const Ownership& own = pipeline.representatives().owners();
-    std::set<std::pair<Index, Index>> candidates;
-    for (const FacePair& p : pipeline.last_candidates().pairs) candidates.insert({p.a, p.b});
-    auto is_candidate = [&](Index f, Index g2) { return candidates.count({std::min(f, g2), std::max(f, g2)}) > 0; };
+    auto is_candidate = [&](Index f, Index g2) { return gathered.is_candidate(f, g2); };
     std::size_t expected_vf = 0, expected_ee = 0;
     for (Index v = 0; v < mesh.num_vertices(); ++v)
       for (Index f = 0; f < mesh.num_faces(); ++f) {
@@ -108,21 +125,10 @@ TEST(Representatives, FirstFreeTestsEveryFeaturePairOnceThroughItsFirstNonAdjace
   PipelineStrategies s = default_strategies(18);
   s.narrow.representative = RepresentativeRule::first_free;
   CcdPipeline pipeline(mesh, single_cloth_body(mesh), std::move(s));
-  pipeline.set_record_tested_pairs(true);
-  std::mt19937 rng(17);
-  Positions x0 = test::crumple(g.positions, rng, 0.02), x1 = x0;
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (Vec3& p : x1) p += 0.12 * Vec3(u(rng), u(rng), u(rng));
-  StepResult r = pipeline.step(x0, x1);
-  auto vf = r.tested_vf;
-  auto ee = r.tested_ee;
-  std::sort(vf.begin(), vf.end());
-  std::sort(ee.begin(), ee.end());
-  EXPECT_EQ(std::adjacent_find(vf.begin(), vf.end()), vf.end()) << "a VF pair was tested twice";
-  EXPECT_EQ(std::adjacent_find(ee.begin(), ee.end()), ee.end()) << "an EE pair was tested twice";
-  std::set<std::pair<Index, Index>> candidates;
-  for (const FacePair& p : pipeline.last_candidates().pairs) candidates.insert({p.a, p.b});
-  auto is_candidate = [&](Index f, Index g2) { return candidates.count({std::min(f, g2), std::max(f, g2)}) > 0; };
+  const Gathered gathered = gather_one_step(pipeline, g, 17);
+  const auto& vf = gathered.vf;
+  const auto& ee = gathered.ee;
+  auto is_candidate = [&](Index f, Index g2) { return gathered.is_candidate(f, g2); };
   std::size_t orphans_vf = 0, orphans_ee = 0;
   for (Index v = 0; v < mesh.num_vertices(); ++v)
     for (Index f = 0; f < mesh.num_faces(); ++f) {
