@@ -35,11 +35,11 @@ int run_command(const RunOptions& o) {
   yaml << "# resolved by ccdlab " << build_info::git_revision << " from " << config.source << "\n" << to_yaml(config_json);
   OutputFile csv, jsonl, contacts_csv;
   const std::string rev = build_info::git_revision;
-  const std::string fixed_cols = fmt::format("{},{},{},{},{},{}", config.name, config.scheduler.name, config.threads,
-                                             config.k, config.tester.name, rev);
+  const std::string fixed_cols = fmt::format("{},{},{},{},{},{},{}", config.name, config.scheduler.name, config.threads,
+                                             config.k, config.width, config.tester.name, rev);
   if (config.output.csv) {
     csv = open("steps.csv");
-    csv << "step,frame_t0,frame_t1," << csv_header() << ",experiment,scheduler,threads,k,tester,git_revision\n";
+    csv << "step,frame_t0,frame_t1," << csv_header() << ",experiment,scheduler,threads,k,bv_width,tester,git_revision\n";
   }
   if (config.output.jsonl) {
     jsonl = open("steps.jsonl");
@@ -56,8 +56,8 @@ int run_command(const RunOptions& o) {
 
   if (!o.json) {
     fmt::print("ccdlab run {} — {}\n", config.name, scene.description());
-    fmt::print("  k={} hierarchy={} scheduler={} threads={} tester={}  ({} triangles, {} orphan VF + {} orphan EE, rev {})\n\n",
-               config.k, config.hierarchy.name, config.scheduler.name, config.threads, config.tester.name,
+    fmt::print("  k={} width={} hierarchy={} scheduler={} threads={} tester={}  ({} triangles, {} orphan VF + {} orphan EE, rev {})\n\n",
+               config.k, config.width, config.hierarchy.name, config.scheduler.name, config.threads, config.tester.name,
                scene.topology().num_faces(), pipeline.orphans().vf.size(), pipeline.orphans().ee.size(), rev);
     print_table_header(stdout);
   }

@@ -26,10 +26,12 @@ StrategyChoice choose(const R& registry, const std::string& option, const std::s
 
 int step_command(const StepOptions& o) {
   if (o.k != 6 && o.k != 14 && o.k != 18 && o.k != 26) fail("--k: expected one of 6, 14, 18, 26, got {}", o.k);
+  if (o.width != 2 && o.width != 4) fail("--bv-width: expected 2 (binary) or 4 (wide), got {}", o.width);
   if (o.threads < 1 || o.threads > kMaxThreads)
     fail("--threads: expected an integer from 1 to {}, got {}", kMaxThreads, o.threads);
   PipelineStrategies s;
   s.k = o.k;
+  s.width = o.width;
   s.threads = o.threads;
   s.memory_limit = parse_memory_size(o.memory_limit, "--memory-limit");
   s.narrow = {parse_narrow_mode(o.narrow), parse_representative_rule(o.representative)};
@@ -66,14 +68,14 @@ int step_command(const StepOptions& o) {
     j["vertices"] = mesh.num_vertices();
     j["orphans"] = {{"vf", pipeline.orphans().vf.size()}, {"ee", pipeline.orphans().ee.size()}};
     j["memory"]["estimate_mb"] =
-        double(estimate_pipeline_bytes(mesh, o.k, pipeline.orphans().vf.size() + pipeline.orphans().ee.size())) / (1 << 20);
-    j["config"] = {{"k", o.k}, {"hierarchy", o.hierarchy}, {"scheduler", o.scheduler}, {"threads", o.threads}, {"tester", o.tester},
+        double(estimate_pipeline_bytes(mesh, o.k, o.width, pipeline.orphans().vf.size() + pipeline.orphans().ee.size())) / (1 << 20);
+    j["config"] = {{"k", o.k}, {"bv_width", o.width}, {"hierarchy", o.hierarchy}, {"scheduler", o.scheduler}, {"threads", o.threads}, {"tester", o.tester},
                    {"narrow", {{"mode", o.narrow}, {"representative", o.representative}}}, {"memory_limit", o.memory_limit},
                    {"simd_target", plane_filter_target()}};
     fmt::print("{}\n", j.dump(2));
   } else {
-    fmt::print("ccdlab step {} -> {}: {} triangles, k={} hierarchy={} scheduler={} tester={} narrow={}/{} ({})\n\n",
-               o.mesh_t0, o.mesh_t1, mesh.num_faces(), o.k, o.hierarchy, o.scheduler, o.tester, o.narrow,
+    fmt::print("ccdlab step {} -> {}: {} triangles, k={} width={} hierarchy={} scheduler={} tester={} narrow={}/{} ({})\n\n",
+               o.mesh_t0, o.mesh_t1, mesh.num_faces(), o.k, o.width, o.hierarchy, o.scheduler, o.tester, o.narrow,
                o.representative, plane_filter_target());
     print_table_header(stdout);
     print_table_row(stdout, "0", r);

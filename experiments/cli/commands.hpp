@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "framework/hierarchy/wide_bvh.hpp"
+
 namespace ccdlab::cli {
 
 struct RunOptions {
@@ -17,6 +19,7 @@ int run_command(const RunOptions& o);
 struct StepOptions {
   std::string mesh_t0, mesh_t1;
   int k = 18;
+  int width = kDefaultBvhWidth;
   std::string scheduler = "sequential";
   std::string hierarchy = "median";
   std::string tester = "float";

@@ -141,10 +141,14 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
   if (!root["scene"]) fail("{}: scene: required key missing (e.g. scene: {{builtin: drape_fold}})", path);
   c.scene = read_scene(r, root["scene"], path, reg);
   if (root["bv"]) {
-    r.check_keys(root["bv"], "bv", {"k"});
+    r.check_keys(root["bv"], "bv", {"k", "width"});
     if (root["bv"]["k"]) {
       c.k = int(r.integer(root["bv"]["k"], "bv.k", 6, 26));
       if (c.k != 6 && c.k != 14 && c.k != 18 && c.k != 26) r.error(root["bv"]["k"], "bv.k", "one of 6, 14, 18, 26");
+    }
+    if (root["bv"]["width"]) {
+      c.width = int(r.integer(root["bv"]["width"], "bv.width", 2, 4));
+      if (c.width != 2 && c.width != 4) r.error(root["bv"]["width"], "bv.width", "2 (binary) or 4 (wide)");
     }
   }
   auto strategy = [&](const char* key, const auto& registry, const std::string& default_name) {
@@ -207,7 +211,7 @@ nlohmann::json to_json(const ExperimentConfig& c) {
   } else {
     j["scene"] = {{"frames", c.scene.files}, {"self_collision", c.scene.self_collision}};
   }
-  j["bv"] = {{"k", c.k}};
+  j["bv"] = {{"k", c.k}, {"width", c.width}};
   j["hierarchy"] = params_json(c.hierarchy);
   j["restructure"] = {{"threshold", c.restructure_threshold}};
   j["normal_cones"] = c.normal_cones;
@@ -247,6 +251,7 @@ MeshSequence make_scene(const ExperimentConfig& c, const Registries& reg) {
 PipelineStrategies make_strategies(const ExperimentConfig& c, const Registries& reg) {
   PipelineStrategies s;
   s.k = c.k;
+  s.width = c.width;
   s.threads = c.threads;
   s.restructure_threshold = c.restructure_threshold;
   s.normal_cones = c.normal_cones;

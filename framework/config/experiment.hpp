@@ -53,6 +53,7 @@ struct ExperimentConfig {
   std::string source;               ///< the YAML file it came from
   SceneConfig scene;
   int k = 18;
+  int width = kDefaultBvhWidth;     ///< bv.width: 2 (binary BVTT) or 4 (framework/hierarchy/wide_bvh.hpp)
   StrategyChoice hierarchy{"median", {}};
   StrategyChoice scheduler{"sequential", {}};
   int threads = 1;

@@ -97,3 +97,41 @@ std::vector<Index> subtree_faces(const BvhTopology& bvh, Index root) {
 }
 
 }  // namespace ccdlab
+
+#include "framework/hierarchy/wide_bvh.hpp"
+
+namespace ccdlab {
+
+WideLayout WideLayout::of(const BvhTopology& bvh) {
+  WideLayout w;
+  w.version = bvh.version;
+  w.slot.assign(bvh.nodes.size(), -1);
+  Index inner = 0;
+  for (Index i = 0; i < bvh.size(); ++i) w.slot[i] = bvh.nodes[i].is_leaf() ? ~bvh.nodes[i].face : inner++;
+  w.lanes.reserve(std::size_t(inner));
+  for (Index i = 0; i < bvh.size(); ++i) {
+    const BvhNode& n = bvh.nodes[i];
+    if (n.is_leaf()) continue;
+    Lanes l;
+    l.node.fill(-1);
+    l.slot.fill(-1);
+    int k = 0;
+    const auto add = [&](Index c) {
+      l.node[k] = c;
+      l.slot[k++] = w.slot[c];
+    };
+    for (Index c : {n.left, n.right}) {
+      const BvhNode& cn = bvh.nodes[c];
+      if (cn.is_leaf()) {
+        add(c);
+      } else {
+        add(cn.left);
+        add(cn.right);
+      }
+    }
+    w.lanes.push_back(l);
+  }
+  return w;
+}
+
+}  // namespace ccdlab

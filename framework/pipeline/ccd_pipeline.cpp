@@ -19,6 +19,16 @@ constexpr std::size_t kFaceChunk = 2048;
 
 }  // namespace
 
+AnyWideBvs make_wide_bvs(int k) {
+  switch (k) {
+    case 6: return WideBvs<KDop<6>>{};
+    case 14: return WideBvs<KDop<14>>{};
+    case 18: return WideBvs<KDop<18>>{};
+    case 26: return WideBvs<KDop<26>>{};
+  }
+  fail("bv.k: expected one of 6, 14, 18, 26, got {}", k);
+}
+
 AnyBvs make_bvs(int k) {
   switch (k) {
     case 6: return std::vector<KDop<6>>{};
@@ -48,17 +58,21 @@ void compute_face_bvs(const TriMesh& mesh, const Positions& x0, const Positions&
       out);
 }
 
-std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, std::size_t orphan_pairs) {
+std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std::size_t orphan_pairs) {
   const std::uint64_t v = std::uint64_t(mesh.num_vertices()), e = std::uint64_t(mesh.num_edges()),
                       f = std::uint64_t(mesh.num_faces());
   const std::uint64_t bv = std::visit([](const auto& vec) { return std::uint64_t(sizeof(vec[0])); }, make_bvs(k));
   const std::uint64_t bvh = 2 * f * (sizeof(BvhNode) + sizeof(Index) + bv);  // nodes, leaf counts, node volumes
+  const std::uint64_t wide_bounds =
+      std::visit([](const auto& vec) { return std::uint64_t(sizeof(vec[0])); }, make_wide_bvs(k));
+  // One wide node per inner node (f − 1): its lanes and bounds, plus a slot per node.
+  const std::uint64_t wide = width == 4 ? f * (sizeof(WideLayout::Lanes) + wide_bounds) + 2 * f * sizeof(Index) : 0;
   const std::uint64_t face_bvs = f * bv;
   const std::uint64_t feature_boxes = v * sizeof(PaddedDop);
   const std::uint64_t ownership = (v + e) * sizeof(Index) + f;
   const std::uint64_t orphans = std::uint64_t(orphan_pairs) * sizeof(EdgeEdgePair);
   const std::uint64_t frames = 2 * v * sizeof(Vec3);
-  return bvh + face_bvs + feature_boxes + ownership + orphans + frames;
+  return bvh + wide + face_bvs + feature_boxes + ownership + orphans + frames;
 }
 
 CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, PipelineStrategies strategies)
@@ -79,7 +93,7 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
          strategies_.tester->thickness());
   if (const std::uint64_t limit = strategies_.memory_limit; limit > 0) {
     const std::uint64_t resident = current_rss_bytes(),
-                        need = estimate_pipeline_bytes(mesh_, strategies_.k, orphans().vf.size() + orphans().ee.size());
+                        need = estimate_pipeline_bytes(mesh_, strategies_.k, strategies_.width, orphans().vf.size() + orphans().ee.size());
     if (resident + need > limit)
       fail("memory_limit {}: this run needs about {} before its first step ({} resident now with the scene, {} more "
            "for the BVH, feature boxes and orphan set of {} triangles); lower the scene's size or raise memory_limit",
@@ -91,18 +105,27 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
   for (std::size_t b = 0; b < bl.size(); ++b) {
     for (Index f = bl[b].face_begin; f < bl[b].face_end; ++f) bodies_[b].faces.push_back(f);
     bodies_[b].node_bvs = make_bvs(strategies_.k);
+    bodies_[b].node_wide = make_wide_bvs(strategies_.k);
   }
   // Passes: self passes first, then body pairs; ids are stable for the pipeline's lifetime.
-  const int threads = strategies_.threads;
+  const auto add_pass = [&](int i, int j) {
+    BodyState& a = bodies_[i];
+    BodyState& b = bodies_[j];
+    TraversalPass pass{int(passes_.size()), &mesh_, &a.bvh, &a.node_bvs, &b.bvh, &b.node_bvs, i == j, strategies_.threads};
+    if (i == j && strategies_.normal_cones) pass.skip_root = &a.skip_root;
+    if (strategies_.width == 4) {
+      pass.wide_layout_a = &a.wide_layout;
+      pass.wide_a = &a.node_wide;
+      pass.wide_layout_b = &b.wide_layout;
+      pass.wide_b = &b.node_wide;
+    }
+    passes_.push_back(pass);
+  };
   for (int i = 0; i < int(bl.size()); ++i)
-    if (rules_.bodies_interact(i, i) && !bodies_[i].faces.empty())
-      passes_.push_back({int(passes_.size()), &mesh_, &bodies_[i].bvh, &bodies_[i].node_bvs, &bodies_[i].bvh,
-                         &bodies_[i].node_bvs, true, threads, strategies_.normal_cones ? &bodies_[i].skip_root : nullptr});
+    if (rules_.bodies_interact(i, i) && !bodies_[i].faces.empty()) add_pass(i, i);
   for (int i = 0; i < int(bl.size()); ++i)
     for (int j = i + 1; j < int(bl.size()); ++j)
-      if (rules_.bodies_interact(i, j) && !bodies_[i].faces.empty() && !bodies_[j].faces.empty())
-        passes_.push_back({int(passes_.size()), &mesh_, &bodies_[i].bvh, &bodies_[i].node_bvs, &bodies_[j].bvh,
-                           &bodies_[j].node_bvs, false, threads});
+      if (rules_.bodies_interact(i, j) && !bodies_[i].faces.empty() && !bodies_[j].faces.empty()) add_pass(i, j);
 }
 
 CcdPipeline::~CcdPipeline() = default;
@@ -221,6 +244,29 @@ void CcdPipeline::refit_body(BodyState& body, PhaseTrace& trace) {
       body.node_bvs);
 }
 
+void CcdPipeline::refit_wide(BodyState& body, PhaseTrace& trace) {
+  const BvhTopology& bvh = body.bvh;
+  if (body.wide_layout.version != bvh.version) body.wide_layout = WideLayout::of(bvh);  // after restructuring too
+  const WideLayout& layout = body.wide_layout;
+  std::visit(
+      [&](auto& node_wide) {
+        using Bounds = typename std::decay_t<decltype(node_wide)>::value_type;
+        using Vec = std::vector<typename Bounds::Volume>;
+        const Vec& bvs = std::get<Vec>(body.node_bvs);
+        node_wide.resize(layout.lanes.size());
+        parallel_chunks(layout.lanes.size(), 4096, strategies_.threads, trace, [&](std::size_t b, std::size_t e, int) {
+          for (std::size_t w = b; w < e; ++w) {
+            // The lanes are scattered over the binary array: ask for the next nodes' early (memory-bound loop).
+            if (w + 8 < e)
+              for (Index c : layout.lanes[w + 8].node)
+                if (c >= 0) __builtin_prefetch(&bvs[c]);
+            refit_wide_node(layout, bvs, Index(w), node_wide[w]);
+          }
+        });
+      },
+      body.node_wide);
+}
+
 template <class Gather>
 void CcdPipeline::narrow_in_parallel(std::size_t n, std::size_t chunk, const char* phase, StepResult& result,
                                      Gather&& gather) {
@@ -294,6 +340,12 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
     c.restructured = restructure(x_t0, x_t1, trace);
     result.traces.push_back(std::move(trace));
   }
+  if (strategies_.width == 4)
+    for (BodyState& body : bodies_) {
+      PhaseTrace trace{"refit_wide", Distribution::dynamic, 0, {}, {}};
+      refit_wide(body, trace);
+      result.traces.push_back(std::move(trace));
+    }
   tm.refit_ms = ms_since(t);
   if (strategies_.normal_cones) {
     const auto tc = Clock::now();
@@ -441,7 +493,8 @@ std::size_t CcdPipeline::memory_bytes() const {
                       own.edge_owner.size() * sizeof(Index) + own.owned_mask.size() + narrow_.memory_bytes() +
                       orphans().vf.size() * sizeof(VertexFacePair) + orphans().ee.size() * sizeof(EdgeEdgePair);
   for (const BodyState& b : bodies_)
-    bytes += b.bvh.memory_bytes() + std::visit([](const auto& v) { return v.size() * sizeof(v[0]); }, b.node_bvs);
+    bytes += b.bvh.memory_bytes() + std::visit([](const auto& v) { return v.size() * sizeof(v[0]); }, b.node_bvs) +
+             b.wide_layout.memory_bytes() + std::visit([](const auto& v) { return v.size() * sizeof(v[0]); }, b.node_wide);
   return bytes;
 }
 

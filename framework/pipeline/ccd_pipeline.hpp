@@ -21,6 +21,7 @@ namespace ccdlab {
 
 struct PipelineStrategies {
   int k = 18;  ///< k-DOP: 6, 14, 18 or 26
+  int width = kDefaultBvhWidth;  ///< BVH width the traversal reads: 2 (binary) or 4 (framework/hierarchy/wide_bvh.hpp)
   int threads = 1;  ///< OpenMP threads for every stage
   /// Adaptive restructuring: rebuild a sub-tree when its quality (Σ sizes of inner nodes ÷ size of its root)
   /// exceeds this × its value at the last (re)build. 0 = off.
@@ -71,6 +72,8 @@ class CcdPipeline {
     std::vector<Index> faces;
     BvhTopology bvh;
     AnyBvs node_bvs;
+    WideLayout wide_layout;  ///< width 4: cut again whenever the topology version changes
+    AnyWideBvs node_wide;    ///< width 4: refit from node_bvs after the binary refit (and restructuring)
     // Adaptive restructuring units: disjoint sub-trees of ≤ max(64, n/64) leaves, and their reference quality.
     std::vector<Index> restructure_roots;
     std::vector<double> quality_ref;
@@ -82,6 +85,7 @@ class CcdPipeline {
   std::uint64_t restructure(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
   void build_hierarchies(const Positions& x_t0, const Positions& x_t1);
   void refit_body(BodyState& body, PhaseTrace& trace);
+  void refit_wide(BodyState& body, PhaseTrace& trace);
   /// BVTT traversal of every pass and the narrow phase of its candidates: at once, or slice by slice when the
   /// memory plan streams.
   void traverse_and_test(const MemoryPlan& plan, StepResult& result);
@@ -106,13 +110,14 @@ class CcdPipeline {
   bool record_tested_ = false;
 };
 
-/// Bytes a pipeline over `mesh` will add before its first traversal: the BVHs and their volumes, the swept face
-/// volumes, the feature bounds, the ownership, the orphan set and the two frames of a step. Checked against
+/// Bytes a pipeline over `mesh` will add before its first traversal: the BVHs and their volumes (and their 4-wide
+/// view for width 4), the swept face volumes, the feature bounds, the ownership, the orphan set and the two frames of a step. Checked against
 /// memory_limit when a pipeline is made, so that a run too large for the machine is refused before it starts.
-std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, std::size_t orphan_pairs);
+std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std::size_t orphan_pairs);
 
 /// An AnyBvs holding an empty vector of KDop<k>; throws Error unless k ∈ {6, 14, 18, 26}.
 AnyBvs make_bvs(int k);
+AnyWideBvs make_wide_bvs(int k);
 
 /// Swept k-DOP of every face of the mesh over the step (inflated by thickness), on `threads` threads; the
 /// task costs go to `trace` when given.

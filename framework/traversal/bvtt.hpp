@@ -5,11 +5,14 @@
 //   pair node (A, B)  → one BV overlap test; if they overlap, descend the larger node (by size_measure;
 //                       the other one if the larger is a leaf); two overlapping leaves give a candidate.
 // Adjacent faces (sharing a vertex) are never candidates: ICCD handles their features in the orphan set.
+#include <bit>
 #include <cstdint>
 #include <utility>
 #include <vector>
 
 #include "framework/hierarchy/bvh.hpp"
+#include "framework/hierarchy/wide_bvh.hpp"
+#include "framework/traversal/wide_overlap.hpp"
 #include "framework/traversal/candidates.hpp"
 
 namespace ccdlab {
@@ -31,15 +34,24 @@ struct BvttView {
   /// Normal-cone culling (self passes): topmost ancestor-or-self of each node whose self test is skipped this
   /// step, −1 if none; nullptr when culling is off. See normal_cones.hpp.
   const Index* skip_root = nullptr;
+  /// The 4-wide views of both hierarchies (bv.width: 4), or nullptr: traverse_bvtt then walks the binary tree.
+  const WideLayout* wide_layout_a = nullptr;
+  const WideBvs<BV>* wide_a = nullptr;
+  const WideLayout* wide_layout_b = nullptr;
+  const WideBvs<BV>* wide_b = nullptr;
+  [[nodiscard]] bool wide() const { return wide_a && wide_b; }
   /// Appends the candidate of two overlapping leaves (ordered (min, max) in self passes; none when adjacent).
   /// Returns whether one was appended.
   bool emit_leaf_pair(const BvhNode& A, const BvhNode& B, std::vector<FacePair>& out) const {
+    return emit_face_pair(A.face, B.face, out);
+  }
+  bool emit_face_pair(Index fa, Index fb, std::vector<FacePair>& out) const {
     if (!self) {
-      out.push_back({A.face, B.face});
+      out.push_back({fa, fb});
       return true;
     }
-    if (mesh->faces_adjacent(A.face, B.face)) return false;
-    out.push_back(A.face < B.face ? FacePair{A.face, B.face} : FacePair{B.face, A.face});
+    if (mesh->faces_adjacent(fa, fb)) return false;
+    out.push_back(fa < fb ? FacePair{fa, fb} : FacePair{fb, fa});
     return true;
   }
   /// The descent rule of a pair node: split a (true) or b (false) — the larger by size_measure, never a leaf.
@@ -56,10 +68,9 @@ struct BvttView {
   }
 };
 
-/// Depth-first traversal of the BVTT below `start`, appending candidate face pairs (ordered min, max for
-/// self passes; (face of a, face of b) otherwise) to `out`. `stack` is scratch space.
+/// Depth-first traversal of the binary BVTT below `start`: each popped pair node is one BV test.
 template <class BV>
-void traverse_bvtt(const BvttView<BV>& v, BvttNode start, std::vector<BvttNode>& stack, TraversalOutput& out) {
+void traverse_bvtt_binary(const BvttView<BV>& v, BvttNode start, std::vector<BvttNode>& stack, TraversalOutput& out) {
   const auto& na = v.bvh_a->nodes;
   const auto& nb = v.bvh_b->nodes;
   const auto& bva = *v.bv_a;
@@ -94,6 +105,94 @@ void traverse_bvtt(const BvttView<BV>& v, BvttNode start, std::vector<BvttNode>&
     }
   }
   out.bv_tests += bv_tests;
+}
+
+
+/// A node on the wide traversal's stack: a self node (a == b in a self pass) or a pair node known to overlap,
+/// carrying what its descent needs so that popping it reads no binary node: each side's wide slot (−1 for a
+/// leaf) and size measure.
+struct WideBvttEntry {
+  Index a, b;
+  Index wa, wb;  ///< WideLayout::slot of a and b: a wide node, or ~face for a leaf
+  float sa, sb;
+};
+
+/// Scratch space of one traversal (one per thread): the binary and the wide walk keep different stacks.
+struct BvttStack {
+  std::vector<BvttNode> binary;
+  std::vector<WideBvttEntry> wide;
+};
+
+/// Depth-first traversal over the 4-wide view: a pair node's larger side opens all its lanes at once and only
+/// the lanes that overlap the other side are pushed (test before push). Self nodes still open into (L, L),
+/// (R, R), (L, R) as in the binary BVTT, so normal-cone skips apply unchanged. The descent rule is the binary
+/// one (the larger side by size_measure, never a leaf); the candidates are the same (see wide_bvh.hpp).
+template <class BV>
+void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideBvttEntry>& stack, TraversalOutput& out) {
+  constexpr int W = WideLayout::kWidth;
+  const auto& na = v.bvh_a->nodes;
+  const auto& nb = v.bvh_b->nodes;
+  const auto& bva = *v.bv_a;
+  const auto& bvb = *v.bv_b;
+  const WideLayout& la = *v.wide_layout_a;
+  const WideLayout& lb = *v.wide_layout_b;
+  std::uint64_t bv_tests = 0;
+  const auto pair_entry = [&](Index a, Index b) {
+    return WideBvttEntry{a, b, la.slot[a], lb.slot[b], bva[a].size_measure(), bvb[b].size_measure()};
+  };
+  stack.clear();
+  if (v.self && start.a == start.b) {
+    stack.push_back({start.a, start.b, -1, -1, 0, 0});
+  } else {
+    ++bv_tests;
+    if (bva[start.a].overlaps(bvb[start.b])) stack.push_back(pair_entry(start.a, start.b));
+  }
+  alignas(16) float size[W];
+  while (!stack.empty()) {
+    const WideBvttEntry n = stack.back();
+    stack.pop_back();
+    if (v.self && n.a == n.b) {
+      const BvhNode& A = na[n.a];
+      if (A.is_leaf() || (v.skip_root && v.skip_root[n.a] >= 0)) continue;
+      stack.push_back({A.right, A.right, -1, -1, 0, 0});
+      stack.push_back({A.left, A.left, -1, -1, 0, 0});
+      ++bv_tests;
+      if (bva[A.left].overlaps(bva[A.right])) stack.push_back(pair_entry(A.left, A.right));
+      continue;
+    }
+    if (n.wa < 0 && n.wb < 0) {
+      v.emit_face_pair(~n.wa, ~n.wb, out.pairs);
+      continue;
+    }
+    const bool down_a = n.wb < 0 || (n.wa >= 0 && n.sa >= n.sb);  // the binary rule: the larger, never a leaf
+    const Index w = down_a ? n.wa : n.wb;
+    const auto& bounds = (down_a ? *v.wide_a : *v.wide_b)[w];
+    const WideLayout::Lanes& lanes = (down_a ? la : lb).lanes[w];
+    unsigned hit = overlapping_lanes(bounds, down_a ? bvb[n.b] : bva[n.a]);
+    bv_tests += W - (lanes.node[W - 1] < 0) - (lanes.node[W - 2] < 0);
+    if (!hit) continue;
+    lane_sizes(bounds, size);
+    for (; hit; hit &= hit - 1) {
+      const int j = std::countr_zero(hit);
+      WideBvttEntry child = n;
+      (down_a ? child.a : child.b) = lanes.node[j];
+      (down_a ? child.wa : child.wb) = lanes.slot[j];
+      (down_a ? child.sa : child.sb) = size[j];
+      stack.push_back(child);
+    }
+  }
+  out.bv_tests += bv_tests;
+}
+
+/// Depth-first traversal of the BVTT below `start`, appending candidate face pairs (ordered min, max for
+/// self passes; (face of a, face of b) otherwise) to `out`: over the 4-wide view when the view has one.
+/// `stack` is scratch space.
+template <class BV>
+void traverse_bvtt(const BvttView<BV>& v, BvttNode start, BvttStack& stack, TraversalOutput& out) {
+  if (v.wide())
+    traverse_bvtt_wide(v, start, stack.wide, out);
+  else
+    traverse_bvtt_binary(v, start, stack.binary, out);
 }
 
 }  // namespace ccdlab

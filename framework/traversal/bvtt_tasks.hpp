@@ -60,7 +60,7 @@ void run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, i
                     TraversalOutput& out, PhaseTrace& trace) {
   struct Local {
     TraversalOutput out;
-    std::vector<BvttNode> stack;  // traverse_bvtt appends to `out` and needs its own stack
+    BvttStack stack;  // traverse_bvtt appends to `out` and needs its own stack
   };
   std::vector<PerThread<Local>> local(threads);
   parallel_tasks(tasks.size(), threads, dist, trace, [&](std::size_t i, int tid) {

@@ -10,6 +10,7 @@
 
 #include "framework/geometry/kdop.hpp"
 #include "framework/hierarchy/bvh.hpp"
+#include "framework/hierarchy/wide_bvh.hpp"
 #include "framework/traversal/bvtt.hpp"
 #include "framework/traversal/candidates.hpp"
 #include "framework/util/parallel.hpp"
@@ -17,6 +18,8 @@
 namespace ccdlab {
 
 using AnyBvs = std::variant<std::vector<KDop<6>>, std::vector<KDop<14>>, std::vector<KDop<18>>, std::vector<KDop<26>>>;
+/// The 4-wide bounds of the same hierarchy (bv.width: 4), same alternative as its AnyBvs.
+using AnyWideBvs = std::variant<WideBvs<KDop<6>>, WideBvs<KDop<14>>, WideBvs<KDop<18>>, WideBvs<KDop<26>>>;
 
 /// One traversal pass of a step: a BVH against itself (self-collision) or against another body's BVH.
 /// `id` is stable across steps so stateful schedulers (e.g. a BVTT front) can keep per-pass data.
@@ -30,6 +33,12 @@ struct TraversalPass {
   bool self = true;
   int threads = 1;  ///< OpenMP threads the scheduler may use
   const std::vector<Index>* skip_root = nullptr;  ///< normal-cone culling of self tests (self passes), or none
+  /// The 4-wide views of both hierarchies (bv.width: 4), refit with the binary volumes; nullptr for width 2.
+  /// traverse_bvtt walks them when both are there; the front scheduler keeps its binary front either way.
+  const WideLayout* wide_layout_a = nullptr;
+  const AnyWideBvs* wide_a = nullptr;
+  const WideLayout* wide_layout_b = nullptr;
+  const AnyWideBvs* wide_b = nullptr;
   /// Where the traversal starts: the BVTT root, or one slice of it when a memory-bounded step streams its
   /// candidates to the narrow phase slice by slice (CcdPipeline; a slice has a negative `id`, released after it).
   BvttNode root{0, 0};
@@ -43,7 +52,14 @@ void with_bvtt_view(const TraversalPass& pass, F&& f) {
         using BV = typename std::decay_t<decltype(bvs_a)>::value_type;
         const auto& bvs_b = std::get<std::vector<BV>>(*pass.bvs_b);
         const Index* skip = pass.skip_root && !pass.skip_root->empty() ? pass.skip_root->data() : nullptr;
-        f(BvttView<BV>{pass.bvh_a, &bvs_a, pass.bvh_b, &bvs_b, pass.mesh, pass.self, skip});
+        BvttView<BV> view{pass.bvh_a, &bvs_a, pass.bvh_b, &bvs_b, pass.mesh, pass.self, skip};
+        if (pass.wide_a && pass.wide_b) {
+          view.wide_layout_a = pass.wide_layout_a;
+          view.wide_a = &std::get<WideBvs<BV>>(*pass.wide_a);
+          view.wide_layout_b = pass.wide_layout_b;
+          view.wide_b = &std::get<WideBvs<BV>>(*pass.wide_b);
+        }
+        f(view);
       },
       *pass.bvs_a);
 }

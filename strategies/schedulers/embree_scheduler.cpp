@@ -110,7 +110,7 @@ void EmbreeScheduler::collect(const TraversalPass& pass, TraversalOutput& out, s
   const bool culled = pass.skip_root && !pass.skip_root->empty();
   with_bvtt_view(pass, [&](const auto& view) {
     if (!whole || culled) {  // see the header: ccdlab's own traversal
-      std::vector<BvttNode> stack;
+      BvttStack stack;
       traverse_bvtt(view, pass.root, stack, out);
       return;
     }

@@ -6,7 +6,7 @@ namespace ccdlab {
 void SequentialScheduler::collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) {
   if (pass.bvh_a->nodes.empty() || pass.bvh_b->nodes.empty()) return;
   with_bvtt_view(pass, [&](const auto& view) {
-    std::vector<BvttNode> stack;
+    BvttStack stack;
     const auto t0 = std::chrono::steady_clock::now();
     traverse_bvtt(view, pass.root, stack, out);
     // One task on one thread: all of it is serial.

@@ -30,8 +30,10 @@ struct Combination {
   std::string scheduler;
   int k = 18;
   int threads = 1;
+  int width = 2;  ///< bv.width: the binary BVTT or the 4-wide view
   [[nodiscard]] std::string label() const {
-    return fmt::format("{} restructure={} cones={} {} k={} x{}", builder, restructure, cones, scheduler, k, threads);
+    return fmt::format("{} restructure={} cones={} {} k={} x{} width={}", builder, restructure, cones, scheduler, k,
+                       threads, width);
   }
 };
 
@@ -39,14 +41,18 @@ const std::vector<std::string> kBuilders{"median", "sah"};
 const std::vector<std::string> kSchedulers{"sequential", "phc", "front", "static"};
 const std::vector<int> kKs{6, 14, 18, 26};
 
-/// All 128 combinations of builder × restructure × cones × scheduler × K; threads cycle through 1, 2, 3.
+/// All 128 combinations of builder × restructure × cones × scheduler × K; threads cycle through 1, 2, 3 and
+/// the BVH width alternates so that every scheduler × K meets both widths (once with cones, once without).
 std::vector<Combination> all_combinations() {
   std::vector<Combination> out;
   for (const auto& b : kBuilders)
     for (bool r : {false, true})
       for (bool c : {false, true})
         for (const auto& s : kSchedulers)
-          for (int k : kKs) out.push_back({b, r, c, s, k, 1 + int(out.size() % 3)});
+          for (int k : kKs) {
+            const std::size_t i = out.size();
+            out.push_back({b, r, c, s, k, 1 + int(i % 3), 2 + 2 * int((i / 16 + i) % 2)});
+          }
   return out;
 }
 
@@ -57,7 +63,8 @@ std::vector<Combination> scheduler_k_cover() {
   int i = 0;
   for (const auto& s : kSchedulers)
     for (int k : kKs) {
-      out.push_back({kBuilders[std::size_t(i % 2)], (i / 2) % 2 == 1, (i / 4 + i) % 2 == 1, s, k, 1 + i % 3});
+      out.push_back({kBuilders[std::size_t(i % 2)], (i / 2) % 2 == 1, (i / 4 + i) % 2 == 1, s, k, 1 + i % 3,
+                     2 + 2 * ((i / 4 + i / 2) % 2)});
       ++i;
     }
   return out;
@@ -66,15 +73,16 @@ std::vector<Combination> scheduler_k_cover() {
 /// 4 combinations in which every scheduler, every K and both values of every switch appear: all pairs of the
 /// (slow) `exact` tester with each option value.
 std::vector<Combination> one_of_each() {
-  return {{"median", false, false, "sequential", 6, 1},
-          {"sah", true, false, "phc", 14, 2},
-          {"median", true, true, "front", 18, 3},
-          {"sah", false, true, "static", 26, 2}};
+  return {{"median", false, false, "sequential", 6, 1, 4},
+          {"sah", true, false, "phc", 14, 2, 2},
+          {"median", true, true, "front", 18, 3, 4},
+          {"sah", false, true, "static", 26, 2, 4}};
 }
 
 PipelineStrategies strategies(const Combination& c, const std::string& tester) {
   PipelineStrategies s;
   s.k = c.k;
+  s.width = c.width;
   s.threads = c.threads;
   s.restructure_threshold = c.restructure ? 1.01 : 0;  // aggressive: rebuild at the slightest degradation
   s.normal_cones = c.cones;

@@ -15,11 +15,13 @@ namespace {
 struct Case {
   int k;
   std::string builder;
+  int width = 2;  ///< bv.width: the binary BVTT or the 4-wide view (same candidates)
 };
 
 PipelineStrategies strategies(const Case& c) {
   PipelineStrategies s;
   s.k = c.k;
+  s.width = c.width;
   s.builder = builder_registry().make({c.builder, builder_registry().find(c.builder)->defaults()});
   s.scheduler = scheduler_registry().make({"sequential", {}});
   s.tester = tester_registry().make({"float", tester_registry().find("float")->defaults()});
@@ -103,8 +105,13 @@ TEST_P(Differential, ClothAgainstObstacleMatchesBruteForce) {
 
 INSTANTIATE_TEST_SUITE_P(EveryKAndBuilder, Differential,
                          ::testing::Values(Case{6, "median"}, Case{14, "median"}, Case{18, "median"}, Case{26, "median"},
-                                           Case{6, "sah"}, Case{14, "sah"}, Case{18, "sah"}, Case{26, "sah"}),
-                         [](const auto& info) { return info.param.builder + "_k" + std::to_string(info.param.k); });
+                                           Case{6, "sah"}, Case{14, "sah"}, Case{18, "sah"}, Case{26, "sah"},
+                                           Case{6, "median", 4}, Case{14, "sah", 4}, Case{18, "median", 4},
+                                           Case{26, "sah", 4}),
+                         [](const auto& info) {
+                           return info.param.builder + "_k" + std::to_string(info.param.k) + "_w" +
+                                  std::to_string(info.param.width);
+                         });
 
 }  // namespace
 }  // namespace ccdlab

@@ -1,0 +1,108 @@
+// The 4-wide view of a BVH (framework/hierarchy/wide_bvh.hpp): its lanes are exactly the grandchildren (a leaf
+// child standing for itself), its bounds are the binary volumes, and the SIMD lane test agrees with
+// KDop::overlaps on every lane — including intervals that only touch, which overlap (closed sets).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "framework/hierarchy/wide_bvh.hpp"
+#include "framework/traversal/wide_overlap.hpp"
+#include "strategies/builders/median_builder.hpp"
+#include "support/test_meshes.hpp"
+
+namespace ccdlab {
+namespace {
+
+BvhTopology grid_bvh(int n, int m, std::vector<Box3>& boxes) {
+  const MeshData g = test::grid(n, m);
+  std::vector<Index> faces;
+  for (Index f = 0; f < Index(g.faces.size()); ++f) {
+    faces.push_back(f);
+    Box3 b;
+    for (Index v : g.faces[std::size_t(f)]) b.grow(g.positions[std::size_t(v)]);
+    boxes.push_back(b);
+  }
+  return MedianBuilder().build(faces, boxes);
+}
+
+TEST(WideBvh, LanesAreTheGrandchildren) {
+  std::vector<Box3> boxes;
+  const BvhTopology bvh = grid_bvh(7, 5, boxes);  // 70 leaves: some inner nodes have a leaf child
+  const WideLayout w = WideLayout::of(bvh);
+  ASSERT_EQ(w.version, bvh.version);
+  std::size_t inner = 0, with_leaf_child = 0;
+  for (Index i = 0; i < bvh.size(); ++i) {
+    const BvhNode& n = bvh.nodes[i];
+    if (n.is_leaf()) {
+      EXPECT_EQ(w.slot[i], ~n.face) << "a leaf's slot names its face";
+      continue;
+    }
+    ASSERT_EQ(w.slot[i], Index(inner)) << "inner nodes get slots in node order";
+    std::vector<Index> expected;
+    for (Index c : {n.left, n.right}) {
+      if (bvh.nodes[c].is_leaf()) {
+        expected.push_back(c);
+        ++with_leaf_child;
+      } else {
+        expected.push_back(bvh.nodes[c].left);
+        expected.push_back(bvh.nodes[c].right);
+      }
+    }
+    const WideLayout::Lanes& l = w.lanes[inner];
+    for (std::size_t j = 0; j < 4; ++j) {
+      EXPECT_EQ(l.node[j], j < expected.size() ? expected[j] : -1) << "node " << i << " lane " << j;
+      if (j < expected.size()) EXPECT_EQ(l.slot[j], w.slot[l.node[j]]);
+    }
+    ++inner;
+  }
+  EXPECT_EQ(inner, w.lanes.size());
+  EXPECT_GT(with_leaf_child, 0u) << "the tree must exercise leaf children standing for themselves";
+}
+
+template <int K>
+void check_lane_test(std::mt19937& rng) {
+  using BV = KDop<K>;
+  std::uniform_real_distribution<double> u(-1, 1);
+  const auto random_dop = [&] {
+    BV b;
+    const Vec3 c(u(rng), u(rng), u(rng));
+    for (int p = 0; p < 3; ++p) b.grow(c + 0.3 * Vec3(u(rng), u(rng), u(rng)));
+    return b;
+  };
+  std::size_t hits = 0, misses = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    std::array<BV, 4> lane;
+    for (auto& l : lane) l = random_dop();
+    const int used = 2 + trial % 3;  // 2, 3 or 4 lanes, the rest empty
+    WideBounds<BV> w;
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < BV::num_axes; ++i) {
+        w.lo[i][j] = j < used ? lane[j].min(i) : std::numeric_limits<float>::infinity();
+        w.hi[i][j] = j < used ? lane[j].max(i) : -std::numeric_limits<float>::infinity();
+      }
+    // Every fourth query is a lane itself: touching and identical volumes must overlap.
+    const BV q = trial % 4 == 0 ? lane[0] : random_dop();
+    const unsigned mask = overlapping_lanes(w, q);
+    for (int j = 0; j < 4; ++j) {
+      const bool expected = j < used && lane[j].overlaps(q);
+      EXPECT_EQ(bool(mask >> j & 1u), expected) << "K=" << K << " trial " << trial << " lane " << j;
+      (expected ? hits : misses) += 1;
+    }
+    alignas(16) float size[4];
+    lane_sizes(w, size);
+    for (int j = 0; j < used; ++j) EXPECT_EQ(size[j], lane[j].size_measure());
+  }
+  EXPECT_GT(hits, 100u);
+  EXPECT_GT(misses, 100u);
+}
+
+TEST(WideBvh, SimdLaneTestAgreesWithKDopOverlaps) {
+  std::mt19937 rng(7);
+  check_lane_test<6>(rng);
+  check_lane_test<14>(rng);
+  check_lane_test<18>(rng);
+  check_lane_test<26>(rng);
+}
+
+}  // namespace
+}  // namespace ccdlab
