@@ -1,8 +1,11 @@
 #pragma once
-// One k-DOP against the four lanes of a wide node, one 4-float SIMD compare per axis and side. Highway's static
-// target (the baseline of the build: SSE2 on any x86-64, NEON on arm64) is enough for 4 floats, so this stays
-// inline in the traversal loop without run-time dispatch. Do not include from a foreach_target.h file.
-#include <hwy/highway.h>
+// One k-DOP against the four lanes of a wide node: one 4-float compare per axis and side. Four floats are
+// exactly one SSE2 register, and SSE2 is part of every x86-64 CPU, so this needs no run-time dispatch and stays
+// inline in the traversal loop (Highway's static target on a baseline x86-64 build is its scalar one, one
+// lane). Other CPUs take the plain loops, which are also the reference the tests compare with.
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "framework/hierarchy/wide_bvh.hpp"
 
@@ -10,26 +13,50 @@ namespace ccdlab {
 
 /// Bit j set ⇔ lane j's k-DOP overlaps q (closed intervals on every axis, as KDop::overlaps). Empty lanes never do.
 template <class BV>
-inline unsigned overlapping_lanes(const WideBounds<BV>& w, const BV& q) {
-  namespace hn = hwy::HWY_NAMESPACE;
-  const hn::FixedTag<float, WideLayout::kWidth> d;
-  auto apart = hn::Or(hn::Gt(hn::Load(d, w.lo[0]), hn::Set(d, q.max(0))),
-                      hn::Gt(hn::Set(d, q.min(0)), hn::Load(d, w.hi[0])));
-  for (int i = 1; i < BV::num_axes; ++i)
-    apart = hn::Or(apart, hn::Or(hn::Gt(hn::Load(d, w.lo[i]), hn::Set(d, q.max(i))),
-                                 hn::Gt(hn::Set(d, q.min(i)), hn::Load(d, w.hi[i]))));
-  std::uint8_t bits[8] = {};
-  hn::StoreMaskBits(d, apart, bits);
-  return ~unsigned(bits[0]) & ((1u << WideLayout::kWidth) - 1);
+inline unsigned overlapping_lanes_plain(const WideBounds<BV>& w, const BV& q) {
+  unsigned mask = 0;
+  for (int j = 0; j < WideLayout::kWidth; ++j) {
+    bool apart = false;
+    for (int i = 0; i < BV::num_axes; ++i) apart |= (w.lo[i][j] > q.max(i)) | (q.min(i) > w.hi[i][j]);
+    mask |= unsigned(!apart) << j;
+  }
+  return mask;
 }
 
 /// The lanes' size measures (KDop::size_measure: the extents along the first three axes, summed in that order).
 template <class BV>
-inline void lane_sizes(const WideBounds<BV>& w, float* out) {
-  namespace hn = hwy::HWY_NAMESPACE;
-  const hn::FixedTag<float, WideLayout::kWidth> d;
-  const auto extent = [&](int i) { return hn::Sub(hn::Load(d, w.hi[i]), hn::Load(d, w.lo[i])); };
-  hn::Store(hn::Add(hn::Add(extent(0), extent(1)), extent(2)), d, out);
+inline void lane_sizes_plain(const WideBounds<BV>& w, float* out) {
+  for (int j = 0; j < WideLayout::kWidth; ++j)
+    out[j] = (w.hi[0][j] - w.lo[0][j]) + (w.hi[1][j] - w.lo[1][j]) + (w.hi[2][j] - w.lo[2][j]);
 }
+
+#if defined(__SSE2__)
+static_assert(WideLayout::kWidth == 4, "one SSE2 register per axis and side");
+
+template <class BV>
+inline unsigned overlapping_lanes(const WideBounds<BV>& w, const BV& q) {
+  __m128 apart = _mm_setzero_ps();
+  for (int i = 0; i < BV::num_axes; ++i) {
+    apart = _mm_or_ps(apart, _mm_cmpgt_ps(_mm_load_ps(w.lo[i]), _mm_set1_ps(q.max(i))));
+    apart = _mm_or_ps(apart, _mm_cmpgt_ps(_mm_set1_ps(q.min(i)), _mm_load_ps(w.hi[i])));
+  }
+  return ~unsigned(_mm_movemask_ps(apart)) & 0xFu;
+}
+
+template <class BV>
+inline void lane_sizes(const WideBounds<BV>& w, float* out) {
+  const auto extent = [&](int i) { return _mm_sub_ps(_mm_load_ps(w.hi[i]), _mm_load_ps(w.lo[i])); };
+  _mm_storeu_ps(out, _mm_add_ps(_mm_add_ps(extent(0), extent(1)), extent(2)));
+}
+#else
+template <class BV>
+inline unsigned overlapping_lanes(const WideBounds<BV>& w, const BV& q) {
+  return overlapping_lanes_plain(w, q);
+}
+template <class BV>
+inline void lane_sizes(const WideBounds<BV>& w, float* out) {
+  lane_sizes_plain(w, out);
+}
+#endif
 
 }  // namespace ccdlab

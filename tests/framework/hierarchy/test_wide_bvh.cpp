@@ -1,6 +1,6 @@
 // The 4-wide view of a BVH (framework/hierarchy/wide_bvh.hpp): its lanes are exactly the grandchildren (a leaf
 // child standing for itself), its bounds are the binary volumes, and the SIMD lane test agrees with
-// KDop::overlaps on every lane — including intervals that only touch, which overlap (closed sets).
+// KDop::overlaps (and with the plain loops) on every lane — including identical volumes, which overlap (closed sets).
 #include <gtest/gtest.h>
 
 #include <random>
@@ -83,14 +83,19 @@ void check_lane_test(std::mt19937& rng) {
     // Every fourth query is a lane itself: touching and identical volumes must overlap.
     const BV q = trial % 4 == 0 ? lane[0] : random_dop();
     const unsigned mask = overlapping_lanes(w, q);
+    EXPECT_EQ(mask, overlapping_lanes_plain(w, q)) << "SIMD and plain lane tests differ";
     for (int j = 0; j < 4; ++j) {
       const bool expected = j < used && lane[j].overlaps(q);
       EXPECT_EQ(bool(mask >> j & 1u), expected) << "K=" << K << " trial " << trial << " lane " << j;
       (expected ? hits : misses) += 1;
     }
-    alignas(16) float size[4];
+    alignas(16) float size[4], plain[4];
     lane_sizes(w, size);
-    for (int j = 0; j < used; ++j) EXPECT_EQ(size[j], lane[j].size_measure());
+    lane_sizes_plain(w, plain);
+    for (int j = 0; j < used; ++j) {
+      EXPECT_EQ(size[j], lane[j].size_measure());
+      EXPECT_EQ(plain[j], lane[j].size_measure());
+    }
   }
   EXPECT_GT(hits, 100u);
   EXPECT_GT(misses, 100u);
