@@ -18,6 +18,12 @@ namespace ccdlab::cli {
 int run_command(const RunOptions& o) {
   const Registries reg = builtin_registries();
   const ExperimentConfig config = load_experiment(o.config, o.overrides, reg);
+  const nlohmann::json summary = run_experiment(config, reg, o);
+  if (o.json) fmt::print("{}\n", summary.dump(2));
+  return 0;
+}
+
+nlohmann::json run_experiment(const ExperimentConfig& config, const Registries& reg, const RunOptions& o) {
   const nlohmann::json config_json = to_json(config);
 
   const MeshSequence scene = make_scene(config, reg);
@@ -54,7 +60,8 @@ int run_command(const RunOptions& o) {
     contacts_csv << "step,kind,a,b,c,d,toi\n";
   }
 
-  if (!o.json) {
+  const bool table = !o.json && !o.quiet;
+  if (table) {
     fmt::print("ccdlab run {} — {}\n", config.name, scene.description());
     fmt::print("  k={} width={} hierarchy={} scheduler={} threads={} tester={}  ({} triangles, {} orphan VF + {} orphan EE, rev {})\n\n",
                config.k, config.width, config.hierarchy.name, config.scheduler.name, config.threads, config.tester.name,
@@ -63,7 +70,7 @@ int run_command(const RunOptions& o) {
   }
 
   // When the table rows go to the same terminal they are the progress; otherwise show a progress line.
-  const bool table_on_terminal = !o.json && isatty(STDOUT_FILENO);
+  const bool table_on_terminal = table && isatty(STDOUT_FILENO);
   Progress progress("ccdlab run", scene.num_steps(), o.progress && !table_on_terminal);
   std::vector<double> total_ms, build_ms, cones_ms, swept_ms, refit_ms, traverse_ms, narrow_ms, orphan_ms;
   std::uint64_t hash = contact_set_hash({}), vf = 0, ee = 0, bv_tests = 0, candidates = 0, vf_tests = 0, ee_tests = 0, orphan_pairs = 0, orphan_tests = 0,
@@ -95,7 +102,7 @@ int run_command(const RunOptions& o) {
     narrow_ms.push_back(r.timings.narrow_ms);
     orphan_ms.push_back(r.timings.orphan_ms);
     const std::string &f0 = scene.frame_label(s), &f1 = scene.frame_label(s + 1);
-    if (!o.json) print_table_row(stdout, fmt::format("{}>{}", f0, f1), r);
+    if (table) print_table_row(stdout, fmt::format("{}>{}", f0, f1), r);
     if (csv.is_open()) csv << fmt::format("{},{},{},{},{}\n", s, f0, f1, csv_row(r, step_hash), fixed_cols);
     if (jsonl.is_open()) {
       nlohmann::json j = step_json(r);
@@ -142,9 +149,7 @@ int run_command(const RunOptions& o) {
     jsonl << j.dump() << "\n";
   }
   for (OutputFile* f : {&yaml, &csv, &jsonl, &contacts_csv}) f->commit();
-  if (o.json) {
-    fmt::print("{}\n", summary.dump(2));
-  } else {
+  if (table) {
     const std::string cones = config.normal_cones ? fmt::format(", normal cones {:.2f}", median(cones_ms)) : "";
     fmt::print("\n{} steps: median {:.2f} ms/step (swept BV {:.2f}, refit {:.2f}{}, traverse {:.2f}, narrow {:.2f}, "
                "orphans {:.2f}); contacts vf={} ee={}; hash {:016x}\npeak resident memory {} (limit {}{})\nresults in {}/\n",
@@ -153,7 +158,7 @@ int run_command(const RunOptions& o) {
                config.memory_limit_bytes ? format_bytes(config.memory_limit_bytes) : "none",
                streamed_steps ? fmt::format("; {} steps streamed to stay under it", streamed_steps) : "", config.output.dir);
   }
-  return 0;
+  return summary;
 }
 
 }  // namespace ccdlab::cli

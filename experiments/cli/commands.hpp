@@ -4,6 +4,9 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "framework/config/experiment.hpp"
 #include "framework/hierarchy/wide_bvh.hpp"
 
 namespace ccdlab::cli {
@@ -12,9 +15,24 @@ struct RunOptions {
   std::string config;
   std::vector<std::string> overrides;  ///< --set key=value
   bool json = false;
+  bool quiet = false;  ///< neither the table nor the summary on stdout (a sweep's runs)
   bool progress = true;
 };
 int run_command(const RunOptions& o);
+/// Runs one resolved experiment: writes its result files to output.dir, prints its table unless json/quiet;
+/// returns the summary (also the last line of steps.jsonl).
+nlohmann::json run_experiment(const ExperimentConfig& config, const Registries& reg, const RunOptions& o);
+
+struct SweepOptions {
+  std::string config;
+  std::vector<std::string> overrides;  ///< --set key=value, applied to every run
+  std::string shard = "0/1";
+  bool dry_run = false;
+  bool force = false;
+  bool merge = false;
+  bool progress = true;
+};
+int sweep_command(const SweepOptions& o);
 
 struct StepOptions {
   std::string mesh_t0, mesh_t1;

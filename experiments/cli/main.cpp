@@ -40,6 +40,19 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--json", run.json, "print one JSON summary instead of the table");
   run_cmd->add_flag("--no-progress", no_progress, "no progress line on stderr");
 
+  SweepOptions sweep;
+  bool sweep_no_progress = false;
+  auto* sweep_cmd = app.add_subcommand("sweep", "run every combination of a YAML sweep (resumable, shardable), or "
+                                                 "merge the finished runs into runs.csv");
+  sweep_cmd->add_option("config", sweep.config, "experiment YAML file with a sweep: block")->required();
+  sweep_cmd->add_option("--set", sweep.overrides, "override a config key in every run (repeatable)");
+  sweep_cmd->add_option("--shard", sweep.shard, "run only shard i of n (runs whose index mod n = i), e.g. 0/4")
+      ->capture_default_str();
+  sweep_cmd->add_flag("--dry-run", sweep.dry_run, "list the runs (index, shard, done or not, folder) and run nothing");
+  sweep_cmd->add_flag("--force", sweep.force, "run again the runs whose folder already holds a complete result");
+  sweep_cmd->add_flag("--merge", sweep.merge, "gather every finished run into runs.csv in output.dir; run nothing");
+  sweep_cmd->add_flag("--no-progress", sweep_no_progress, "no progress line on stderr");
+
   StepOptions step;
   auto* step_cmd = app.add_subcommand("step", "one CCD step between two mesh files (PLY or OBJ)");
   step_cmd->add_option("t0", step.mesh_t0, "mesh at the start of the step")->required();
@@ -118,6 +131,10 @@ int main(int argc, char** argv) {
       return run_command(run);
     }
     if (*step_cmd) return step_command(step);
+    if (*sweep_cmd) {
+      sweep.progress = !sweep_no_progress;
+      return sweep_command(sweep);
+    }
     if (*bench_cmd) {
       bench.progress = !bench_no_progress;
       return bench_command(bench);

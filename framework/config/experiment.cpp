@@ -108,13 +108,13 @@ void emit(YAML::Emitter& out, const nlohmann::json& j) {
 
 namespace {
 ExperimentConfig load_experiment_checked(const std::string& path, const std::vector<std::string>& overrides,
-                                         const Registries& reg);
+                                         const Registries& reg, bool sweep_allowed);
 }  // namespace
 
 ExperimentConfig load_experiment(const std::string& path, const std::vector<std::string>& overrides,
-                                 const Registries& reg) {
+                                 const Registries& reg, bool sweep_allowed) {
   try {
-    return load_experiment_checked(path, overrides, reg);
+    return load_experiment_checked(path, overrides, reg, sweep_allowed);
   } catch (const YAML::Exception& e) {
     // Whatever yaml-cpp still refuses (a node of an unexpected kind deep inside) is the file's fault, located.
     fail("{}:{}: {}", path, e.mark.line + 1, e.msg);
@@ -123,12 +123,20 @@ ExperimentConfig load_experiment(const std::string& path, const std::vector<std:
 
 namespace {
 ExperimentConfig load_experiment_checked(const std::string& path, const std::vector<std::string>& overrides,
-                                         const Registries& reg) {
+                                         const Registries& reg, bool sweep_allowed) {
   YAML::Node root = load_yaml_file(path);
   if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
   if (!root.IsMap())
     fail("{}:{}: expected a mapping of config keys (name: …, scene: …), got {}", path, root.Mark().line + 1,
          root.IsSequence() ? "a list" : "a single value");
+  if (root["sweep"]) {
+    if (!sweep_allowed)
+      for (const auto& kv : root)
+        if (kv.first.Scalar() == "sweep")
+          fail("{}:{}: sweep: this file describes a sweep of runs; run it with `ccdlab sweep {}`", path,
+               kv.first.Mark().line + 1, path);
+    root.remove("sweep");  // read by framework/config/sweep.cpp; every run is this config plus its overrides
+  }
   std::set<std::string> overridden;
   for (const auto& o : overrides) overridden.insert(apply_override(root, o));
   YamlReader r(path, overridden);

@@ -68,9 +68,10 @@ struct ExperimentConfig {
   OutputConfig output;
 };
 
-/// Reads and validates a YAML experiment, after applying `overrides` ("a.b=value", as from --set).
+/// Reads and validates a YAML experiment, after applying `overrides` ("a.b=value", as from --set). A file with
+/// a `sweep:` block is refused unless `sweep_allowed` (then the block is ignored here: framework/config/sweep.hpp).
 ExperimentConfig load_experiment(const std::string& path, const std::vector<std::string>& overrides,
-                                 const Registries& registries);
+                                 const Registries& registries, bool sweep_allowed = false);
 
 /// The fully resolved config (every default filled in) as JSON: what result files record.
 nlohmann::json to_json(const ExperimentConfig& config);
