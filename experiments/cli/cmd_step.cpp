@@ -4,7 +4,7 @@
 
 
 #include "experiments/cli/commands.hpp"
-#include "experiments/cli/tester_spec.hpp"
+#include "framework/config/strategy_spec.hpp"
 #include "experiments/cli/report.hpp"
 #include "framework/mesh/mesh_io.hpp"
 #include "framework/util/error.hpp"
@@ -37,7 +37,7 @@ int step_command(const StepOptions& o) {
   s.narrow = {parse_narrow_mode(o.narrow), parse_representative_rule(o.representative)};
   s.builder = builder_registry().make(choose(builder_registry(), "hierarchy", o.hierarchy));
   s.scheduler = scheduler_registry().make(choose(scheduler_registry(), "scheduler", o.scheduler));
-  s.tester = tester_registry().make(parse_tester(o.tester, tester_registry()));
+  s.tester = tester_registry().make(parse_strategy_spec(o.tester, "--tester ", "tester", tester_registry(), "float"));
 
   MeshData m0 = read_mesh(o.mesh_t0);
   MeshData m1 = read_mesh(o.mesh_t1);

@@ -11,7 +11,7 @@
 
 #include "ccdlab/build_info.hpp"
 #include "experiments/cli/commands.hpp"
-#include "experiments/cli/tester_spec.hpp"
+#include "framework/config/strategy_spec.hpp"
 #include "framework/queries/evaluate.hpp"
 #include "framework/queries/hard_cases.hpp"
 #include "framework/util/error.hpp"
@@ -50,7 +50,7 @@ int validate_command(const ValidateOptions& o) {
   if (o.failures < 0) fail("--failures: expected an integer >= 0, got {}", o.failures);
   const Registries reg = builtin_registries();
   std::vector<StrategyChoice> choices;
-  for (const auto& spec : o.testers) choices.push_back(parse_tester(spec, reg.testers));
+  for (const auto& spec : o.testers) choices.push_back(parse_strategy_spec(spec, "--tester ", "tester", reg.testers, "float"));
   std::vector<std::unique_ptr<PrimitiveTester>> testers;
   std::vector<std::string> names;
   for (const auto& c : choices) {

@@ -131,7 +131,6 @@ template <class BV>
 void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideBvttEntry>& stack, TraversalOutput& out) {
   constexpr int W = WideLayout::kWidth;
   const auto& na = v.bvh_a->nodes;
-  const auto& nb = v.bvh_b->nodes;
   const auto& bva = *v.bv_a;
   const auto& bvb = *v.bv_b;
   const WideLayout& la = *v.wide_layout_a;

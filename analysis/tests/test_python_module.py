@@ -1,0 +1,86 @@
+"""pytest for the ccdlab Python module (build/python): answers, options and errors on meshes made here, and the
+same contacts as the CLI on the real cloth-funnel step (skipped where ../shared/data is absent)."""
+import csv
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "build" / "python"))
+ccdlab = pytest.importorskip("ccdlab", reason="the Python module is not built (build/python)")
+FUNNEL = ROOT.parent / "shared" / "data" / "meshes" / "cloth-funnel"
+
+
+def falling_vertex():
+    """Two triangles of one mesh: a small one whose lowest vertex drops through a big horizontal one."""
+    x0 = np.array([[0, 0, 0], [2, 0, 0], [0, 2, 0],                  # big triangle, z = 0
+                   [0.4, 0.3, 0.5], [0.6, 0.3, 0.9], [0.4, 0.5, 0.9]])  # small one above it
+    x1 = x0.copy()
+    x1[3:, 2] -= 0.625                                                 # vertex 3 crosses z = 0 at t = 0.8
+    return x0, x1, np.array([[0, 1, 2], [3, 4, 5]])
+
+
+def test_a_falling_vertex_hits_the_face_at_half_time():
+    x0, x1, faces = falling_vertex()
+    r = ccdlab.step(x0, x1, faces)
+    assert r["vf"].tolist() == [[3, 0, 1, 2]]
+    assert r["ee"].shape == (0, 4)
+    assert r["vf_toi"][0] == pytest.approx(0.8, abs=1e-9)
+    # Barycentric weights of f1, f2 at the hit point (0.4, 0.3, 0): 0.4 / 2 and 0.3 / 2.
+    assert r["vf_coords"][0] == pytest.approx([0.2, 0.15], abs=1e-9)
+    assert abs(r["vf_normal"][0] @ [0, 0, 1]) == pytest.approx(1.0)
+    for tester in ("filtered", "conservative", "exact", {"name": "conservative", "fallback": "exact"},
+                   "conservative:delta=1e-4"):
+        assert ccdlab.step(x0, x1, faces, tester=tester)["hash"] == r["hash"], tester
+
+
+def test_options_are_the_yaml_strategies_and_errors_name_them():
+    x0, x1, faces = falling_vertex()
+    for k in (6, 14, 18, 26):
+        for scheduler in ("sequential", "phc", "static", "front"):
+            r = ccdlab.step(x0, x1, faces, k=k, scheduler=scheduler, threads=2, width=4)
+            assert r["vf"].shape == (1, 4)
+    with pytest.raises(ccdlab.Error, match="k: expected one of 6, 14, 18, 26, got 7"):
+        ccdlab.step(x0, x1, faces, k=7)
+    with pytest.raises(ccdlab.Error, match=r"tester=conservative:delta=2: tester.delta: expected a number in \[0, 1\]"):
+        ccdlab.step(x0, x1, faces, tester="conservative:delta=2")
+    with pytest.raises(ccdlab.Error, match="unknown option 'kk'"):
+        ccdlab.step(x0, x1, faces, kk=18)
+    with pytest.raises(ccdlab.Error, match="faces\\[1\\]\\[2\\] = 9 is not a vertex index"):
+        ccdlab.step(x0, x1, np.array([[0, 1, 2], [3, 4, 9]]))
+    bad = x1.copy()
+    bad[4, 0] = np.nan
+    with pytest.raises(ccdlab.Error, match="is not finite"):
+        ccdlab.step(x0, bad, faces)
+
+
+def test_sequence_refits_one_hierarchy_over_the_frames():
+    x0, x1, faces = falling_vertex()
+    mid = x0.copy()
+    mid[3:, 2] -= 0.25  # vertex 3 at z = 0.25: the crossing is in the second step, at t = 0.25 / 0.375
+    steps = ccdlab.sequence([x0, mid, x1], faces)
+    assert len(steps) == 2
+    assert steps[0]["vf"].shape == (0, 4) and steps[1]["vf"].tolist() == [[3, 0, 1, 2]]
+    assert steps[1]["vf_toi"][0] == pytest.approx(2 / 3, abs=1e-9)
+    assert steps[0]["ms"]["build"] > 0 and steps[1]["ms"]["build"] == 0
+
+
+@pytest.mark.skipif(not (FUNNEL / "227.ply").exists(), reason="../shared/data is absent")
+def test_funnel_contacts_equal_the_cli(tmp_path):
+    meshio = pytest.importorskip("meshio")
+    m0, m1 = meshio.read(FUNNEL / "227.ply"), meshio.read(FUNNEL / "228.ply")
+    r = ccdlab.step(m0.points, m1.points, m0.cells_dict["triangle"], scheduler="phc", threads=2)
+    cli = ROOT / "build" / "bin" / "ccdlab"
+    subprocess.run([str(cli), "step", str(FUNNEL / "227.ply"), str(FUNNEL / "228.ply"), "--contacts",
+                    str(tmp_path / "c.csv")], check=True, capture_output=True)
+    rows = list(csv.DictReader((tmp_path / "c.csv").open()))
+    want = {"vf": [], "ee": []}
+    for row in rows:
+        want[row["kind"]].append(([int(row[c]) for c in "abcd"], float(row["toi"])))
+    assert len(rows) == 134  # the step's true contacts (../shared/data ground truth)
+    for kind in ("vf", "ee"):
+        assert r[kind].tolist() == [ids for ids, _ in want[kind]]
+        assert r[kind + "_toi"].tolist() == pytest.approx([t for _, t in want[kind]], abs=1e-15)

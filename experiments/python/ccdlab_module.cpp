@@ -1,0 +1,231 @@
+// The `ccdlab` Python module (pybind11; built into build/python/): one CCD step, or a sequence of steps, on
+// NumPy arrays, with the strategies chosen by name and parameters as in YAML.
+//
+//   import ccdlab
+//   r = ccdlab.step(x0, x1, faces, k=18, scheduler="phc", threads=2, tester="conservative")
+//   r["vf"]   (N×4 int: v, f0, f1, f2)     r["vf_toi"] (N)   r["vf_coords"] (N×2: weights of f1, f2)
+//   r["ee"]   (M×4 int: a0, a1, b0, b1)   r["ee_toi"] (M)   r["ee_coords"] (M×2: parameters on a, b)
+//   r["vf_normal"], r["ee_normal"] (unit normals at the time of contact), r["hash"], r["counters"], r["ms"]
+//
+// Rows are sorted by feature identity, like the CLI's contacts CSV (same vertex ids, same order).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <yaml-cpp/yaml.h>
+
+#include "ccdlab/build_info.hpp"
+#include "framework/config/strategy_spec.hpp"
+#include "framework/pipeline/bodies.hpp"
+#include "framework/pipeline/ccd_pipeline.hpp"
+#include "framework/util/error.hpp"
+#include "strategies/registry.hpp"
+
+namespace py = pybind11;
+
+namespace ccdlab {
+namespace {
+
+using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using Triangles = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+
+Positions to_positions(const Points& a, const char* name) {
+  if (a.ndim() != 2 || a.shape(1) != 3) fail("ccdlab.step: {} must be an N×3 array of positions, got shape {}", name,
+                                             a.ndim() == 2 ? fmt::format("{}×{}", a.shape(0), a.shape(1)) : "of another rank");
+  Positions p(std::size_t(a.shape(0)));
+  const auto r = a.unchecked<2>();
+  for (py::ssize_t i = 0; i < a.shape(0); ++i) {
+    p[std::size_t(i)] = Vec3(r(i, 0), r(i, 1), r(i, 2));
+    if (!p[std::size_t(i)].allFinite()) fail("ccdlab.step: {}[{}] is not finite", name, i);
+  }
+  return p;
+}
+
+std::vector<Face> to_faces(const Triangles& a, std::size_t vertices) {
+  if (a.ndim() != 2 || a.shape(1) != 3) fail("ccdlab.step: faces must be an F×3 array of vertex indices");
+  std::vector<Face> f(std::size_t(a.shape(0)));
+  const auto r = a.unchecked<2>();
+  for (py::ssize_t i = 0; i < a.shape(0); ++i)
+    for (int j = 0; j < 3; ++j) {
+      const std::int64_t v = r(i, j);
+      if (v < 0 || std::uint64_t(v) >= vertices)
+        fail("ccdlab.step: faces[{}][{}] = {} is not a vertex index (0…{})", i, j, v, vertices - 1);
+      f[std::size_t(i)][std::size_t(j)] = Index(v);
+    }
+  return f;
+}
+
+/// A strategy option: a name, "name:key=value,…", or a dict {"name": …, key: value}.
+template <class Product>
+StrategyChoice strategy_option(const py::handle& value, const std::string& key, const Registry<Product>& registry,
+                               const std::string& default_name) {
+  const std::string where = "ccdlab.step " + key + "=";
+  if (py::isinstance<py::str>(value)) return parse_strategy_spec(value.cast<std::string>(), where, key, registry, default_name);
+  if (py::isinstance<py::dict>(value)) {
+    YAML::Node node(YAML::NodeType::Map);
+    for (const auto& [k, v] : value.cast<py::dict>())
+      node[py::str(k).cast<std::string>()] =
+          py::isinstance<py::bool_>(v) ? std::string(py::cast<bool>(v) ? "true" : "false") : std::string(py::str(v));
+    return strategy_from_node(node, where + std::string(py::repr(value)), key, registry, default_name);
+  }
+  fail("{}: expected a name, 'name:key=value,…' or a dict, got {}", where, py::str(value.get_type()).cast<std::string>());
+}
+
+PipelineStrategies strategies_from(const py::kwargs& options) {
+  PipelineStrategies s;
+  StrategyChoice builder{"median", builder_registry().find("median")->defaults()};
+  StrategyChoice scheduler{"sequential", {}};
+  StrategyChoice tester{"float", tester_registry().find("float")->defaults()};
+  for (const auto& [key_handle, value] : options) {
+    const std::string key = py::str(key_handle);
+    if (key == "k") {
+      s.k = value.cast<int>();
+      if (s.k != 6 && s.k != 14 && s.k != 18 && s.k != 26) fail("ccdlab.step: k: expected one of 6, 14, 18, 26, got {}", s.k);
+    } else if (key == "width") {
+      s.width = value.cast<int>();
+      if (s.width != 2 && s.width != 4) fail("ccdlab.step: width: expected 2 (binary) or 4 (wide), got {}", s.width);
+    } else if (key == "threads") {
+      s.threads = value.cast<int>();
+      if (s.threads < 1 || s.threads > kMaxThreads) fail("ccdlab.step: threads: expected 1 to {}, got {}", kMaxThreads, s.threads);
+    } else if (key == "hierarchy") {
+      builder = strategy_option(value, key, builder_registry(), "median");
+    } else if (key == "scheduler") {
+      scheduler = strategy_option(value, key, scheduler_registry(), "sequential");
+    } else if (key == "tester") {
+      tester = strategy_option(value, key, tester_registry(), "float");
+    } else if (key == "narrow") {
+      s.narrow.mode = parse_narrow_mode(value.cast<std::string>());
+    } else if (key == "representative") {
+      s.narrow.representative = parse_representative_rule(value.cast<std::string>());
+    } else if (key == "normal_cones") {
+      s.normal_cones = value.cast<bool>();
+    } else {
+      fail("ccdlab.step: unknown option '{}' (k, width, hierarchy, scheduler, threads, tester, narrow, representative, "
+           "normal_cones)", key);
+    }
+  }
+  s.builder = builder_registry().make(builder);
+  s.scheduler = scheduler_registry().make(scheduler);
+  s.tester = tester_registry().make(tester);
+  return s;
+}
+
+Vec3 at(const Positions& x0, const Positions& x1, Index v, double t) { return (1 - t) * x0[v] + t * x1[v]; }
+
+/// The unit normal of a contact at its time: the face's for VF, the two edges' cross product for EE (zero
+/// when the face is degenerate or the edges parallel there).
+Vec3 contact_normal(const Contact& c, const Positions& x0, const Positions& x1) {
+  const auto p = [&](int i) { return at(x0, x1, c.vertices[std::size_t(i)], c.toi); };
+  const Vec3 n = c.kind == ContactKind::vf ? (p(2) - p(1)).cross(p(3) - p(1)) : (p(1) - p(0)).cross(p(3) - p(2));
+  const double len = n.norm();
+  return len > 0 ? Vec3(n / len) : Vec3::Zero();
+}
+
+py::dict result_dict(const StepResult& r, const Positions& x0, const Positions& x1) {
+  std::size_t nvf = 0;
+  for (const Contact& c : r.contacts) nvf += c.kind == ContactKind::vf;
+  const std::size_t nee = r.contacts.size() - nvf;
+  py::array_t<std::int64_t> vf({py::ssize_t(nvf), py::ssize_t(4)}), ee({py::ssize_t(nee), py::ssize_t(4)});
+  py::array_t<double> vf_toi(static_cast<py::ssize_t>(nvf)), ee_toi(static_cast<py::ssize_t>(nee));
+  py::array_t<double> vf_coords({py::ssize_t(nvf), py::ssize_t(2)}), ee_coords({py::ssize_t(nee), py::ssize_t(2)});
+  py::array_t<double> vf_normal({py::ssize_t(nvf), py::ssize_t(3)}), ee_normal({py::ssize_t(nee), py::ssize_t(3)});
+  auto vfi = vf.mutable_unchecked<2>(), eei = ee.mutable_unchecked<2>();
+  auto vft = vf_toi.mutable_unchecked<1>(), eet = ee_toi.mutable_unchecked<1>();
+  auto vfc = vf_coords.mutable_unchecked<2>(), eec = ee_coords.mutable_unchecked<2>();
+  auto vfn = vf_normal.mutable_unchecked<2>(), een = ee_normal.mutable_unchecked<2>();
+  py::ssize_t i = 0, j = 0;
+  for (const Contact& c : r.contacts) {
+    const Vec3 n = contact_normal(c, x0, x1);
+    if (c.kind == ContactKind::vf) {
+      for (int k = 0; k < 4; ++k) vfi(i, k) = c.vertices[std::size_t(k)];
+      vft(i) = c.toi;
+      for (int k = 0; k < 2; ++k) vfc(i, k) = c.coords[std::size_t(k)];
+      for (int k = 0; k < 3; ++k) vfn(i, k) = n[k];
+      ++i;
+    } else {
+      for (int k = 0; k < 4; ++k) eei(j, k) = c.vertices[std::size_t(k)];
+      eet(j) = c.toi;
+      for (int k = 0; k < 2; ++k) eec(j, k) = c.coords[std::size_t(k)];
+      for (int k = 0; k < 3; ++k) een(j, k) = n[k];
+      ++j;
+    }
+  }
+  const StepCounters& k = r.counters;
+  py::dict counters;
+  counters["bv_tests"] = k.bv_tests;
+  counters["candidate_pairs"] = k.candidate_pairs;
+  counters["vf_pairs"] = k.vf_pairs;
+  counters["ee_pairs"] = k.ee_pairs;
+  counters["vf_tests"] = k.vf_tests;
+  counters["ee_tests"] = k.ee_tests;
+  counters["orphan_vf"] = k.orphan_vf;
+  counters["orphan_ee"] = k.orphan_ee;
+  const StepTimings& t = r.timings;
+  py::dict ms;
+  ms["total"] = t.total_ms;
+  ms["build"] = t.build_ms;
+  ms["refit"] = t.refit_ms;
+  ms["traverse"] = t.traverse_ms;
+  ms["narrow"] = t.narrow_ms;
+  ms["orphans"] = t.orphan_ms;
+  py::dict d;
+  d["vf"] = vf;
+  d["vf_toi"] = vf_toi;
+  d["vf_coords"] = vf_coords;
+  d["vf_normal"] = vf_normal;
+  d["ee"] = ee;
+  d["ee_toi"] = ee_toi;
+  d["ee_coords"] = ee_coords;
+  d["ee_normal"] = ee_normal;
+  d["hash"] = fmt::format("{:016x}", contact_set_hash(r.contacts));
+  d["counters"] = counters;
+  d["ms"] = ms;
+  return d;
+}
+
+/// Runs the pipeline over consecutive frames (one BVH, refit each step, as `ccdlab run`).
+py::list run_frames(const std::vector<Points>& frames, const Triangles& faces, const py::kwargs& options) {
+  if (frames.size() < 2) fail("ccdlab.sequence: expected at least two frames, got {}", frames.size());
+  std::vector<Positions> x;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    x.push_back(to_positions(frames[i], i == 0 ? "frames[0]" : "a frame"));
+    if (x.back().size() != x.front().size())
+      fail("ccdlab.sequence: frame {} has {} vertices, frame 0 has {}", i, x.back().size(), x.front().size());
+  }
+  const TriMesh mesh(Index(x.front().size()), to_faces(faces, x.front().size()));
+  CcdPipeline pipeline(mesh, single_cloth_body(mesh), strategies_from(options));
+  py::list out;
+  for (std::size_t s = 0; s + 1 < x.size(); ++s) {
+    StepResult r;
+    {
+      py::gil_scoped_release release;  // the step runs its own threads; other Python threads may run meanwhile
+      r = pipeline.step(x[s], x[s + 1]);
+    }
+    out.append(result_dict(r, x[s], x[s + 1]));
+  }
+  return out;
+}
+
+}  // namespace
+}  // namespace ccdlab
+
+PYBIND11_MODULE(ccdlab, m) {
+  using namespace ccdlab;
+  m.doc() = "ccdlab: continuous collision detection for deforming triangle meshes (k-DOP BVHs, BVTT traversal, "
+            "exact elementary tests). Options are the YAML strategies by name: k, width, hierarchy, scheduler, "
+            "threads, tester, narrow, representative, normal_cones.";
+  m.attr("__version__") = build_info::git_revision;
+  py::register_exception<Error>(m, "Error", PyExc_ValueError);
+  m.def(
+      "step",
+      [](const Points& x0, const Points& x1, const Triangles& faces, const py::kwargs& options) {
+        return run_frames({x0, x1}, faces, options)[0].cast<py::dict>();
+      },
+      py::arg("x0"), py::arg("x1"), py::arg("faces"),
+      "One CCD step of a self-colliding mesh from positions x0 (N×3) to x1 (N×3), faces F×3. Returns a dict: vf "
+      "(v, f0, f1, f2) and ee (a0, a1, b0, b1) vertex ids, their toi, coords and normal, hash, counters, ms.");
+  m.def("sequence", &run_frames, py::arg("frames"), py::arg("faces"),
+        "CCD over consecutive frames (a list of N×3 arrays) of one mesh: a list of step dicts (as step()).");
+  m.def("schedulers", [] { return scheduler_registry().names(); }, "the registered traversal schedulers");
+  m.def("testers", [] { return tester_registry().names(); }, "the registered elementary testers");
+}
