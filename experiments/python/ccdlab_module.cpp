@@ -151,23 +151,15 @@ py::dict result_dict(const StepResult& r, const Positions& x0, const Positions& 
     }
   }
   const StepCounters& k = r.counters;
-  py::dict counters;
-  counters["bv_tests"] = k.bv_tests;
-  counters["candidate_pairs"] = k.candidate_pairs;
-  counters["vf_pairs"] = k.vf_pairs;
-  counters["ee_pairs"] = k.ee_pairs;
-  counters["vf_tests"] = k.vf_tests;
-  counters["ee_tests"] = k.ee_tests;
-  counters["orphan_vf"] = k.orphan_vf;
-  counters["orphan_ee"] = k.orphan_ee;
   const StepTimings& t = r.timings;
-  py::dict ms;
-  ms["total"] = t.total_ms;
-  ms["build"] = t.build_ms;
-  ms["refit"] = t.refit_ms;
-  ms["traverse"] = t.traverse_ms;
-  ms["narrow"] = t.narrow_ms;
-  ms["orphans"] = t.orphan_ms;
+  py::dict counters, ms;
+  for (const auto& [name, value] : {std::pair{"bv_tests", k.bv_tests}, {"candidate_pairs", k.candidate_pairs},
+                                    {"vf_pairs", k.vf_pairs}, {"ee_pairs", k.ee_pairs}, {"vf_tests", k.vf_tests},
+                                    {"ee_tests", k.ee_tests}, {"orphan_vf", k.orphan_vf}, {"orphan_ee", k.orphan_ee}})
+    counters[name] = value;
+  for (const auto& [name, value] : {std::pair{"total", t.total_ms}, {"build", t.build_ms}, {"refit", t.refit_ms},
+                                    {"traverse", t.traverse_ms}, {"narrow", t.narrow_ms}, {"orphans", t.orphan_ms}})
+    ms[name] = value;
   py::dict d;
   d["vf"] = vf;
   d["vf_toi"] = vf_toi;
