@@ -29,19 +29,26 @@ PIPELINE_COLUMNS = ["round", "tester", "ms_per_step", "contacts_vf", "contacts_e
 ROUTE_FALLBACK = 2
 
 
-def group_of(set_name: str) -> str:
-    """Query sets grouped as in docs/results-accuracy.md."""
-    if set_name.startswith("handcrafted/"):
+def group_of(set_name: str, collection: str = "", scene: str = "") -> str:
+    """Query sets grouped as in docs/results-accuracy.md: by the collection and scene columns of queries.csv, else by the
+    older path-like set names ("handcrafted/<scene>/<kind>", "simulation/<scene>/<stem>")."""
+    if collection == "handcrafted" or set_name.startswith("handcrafted/"):
         return "handcrafted (Wang et al.)"
-    if set_name.startswith("hard-cases/"):
+    if collection == "hard-cases" or set_name.startswith("hard-cases/"):
         return "hard cases (built-in)"
+    if scene:
+        return scene
     parts = set_name.split("/")
     return parts[1] if parts[0] == "simulation" and len(parts) > 1 else set_name
 
 
 def summarize(queries: pd.DataFrame) -> pd.DataFrame:
     q = queries.copy()
-    q["group"] = q["set"].map(group_of)
+    if "collection" in q.columns:
+        q["group"] = [group_of(s, str(c) if isinstance(c, str) else "", str(sc) if isinstance(sc, str) else "")
+                      for s, c, sc in zip(q["set"], q["collection"], q["scene"])]
+    else:
+        q["group"] = q["set"].map(group_of)
     q["fn"] = (q.truth == 1) & (q.hit == 0)
     q["fp"] = (q.truth == 0) & (q.hit == 1)
     both = (q.hit == 1) & (q.truth == 1)

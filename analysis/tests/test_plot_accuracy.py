@@ -21,6 +21,18 @@ def make_results(folder: Path) -> Path:
     return folder
 
 
+def test_groups_from_the_scene_and_collection_columns(tmp_path):
+    import pandas as pd
+    rows = ["set,scene,collection,tester,query,origin,truth,hit,route,us,toi,exact_toi"]
+    for i in range(4):
+        rows.append(f"wedges/edge-edge,wedges,handcrafted,float,{i},\"q.csv:{i + 1}\",1,1,0,0.5,0.5,0.5")
+        rows.append(f"cloth-funnel/227ee,cloth-funnel,simulation,float,{i},q.csv:{i + 1},0,0,0,0.5,1,1")
+        rows.append(f"hard-cases/two-roots,hard-cases,hard-cases,float,{i},hard-cases/two-roots: x,0,0,0,0.5,1,1")
+    (tmp_path / "queries.csv").write_text("\n".join(rows) + "\n")
+    summary = plot_accuracy.summarize(pd.read_csv(tmp_path / "queries.csv"))
+    assert set(summary.group) == {"handcrafted (Wang et al.)", "cloth-funnel", "hard cases (built-in)"}
+
+
 def test_summary_counts_misses_and_false_hits(tmp_path):
     import pandas as pd
     summary = plot_accuracy.summarize(pd.read_csv(make_results(tmp_path / "r") / "queries.csv"))

@@ -8,6 +8,7 @@
 
 #include "ccdlab/build_info.hpp"
 #include "experiments/cli/commands.hpp"
+#include "experiments/cli/report.hpp"
 #include "framework/config/sweep.hpp"
 #include "framework/util/error.hpp"
 #include "framework/util/files.hpp"
@@ -39,13 +40,6 @@ void flatten(const nlohmann::json& j, const std::string& prefix, std::vector<std
   } else {
     out.emplace_back(prefix, j.dump());
   }
-}
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
 }
 
 int merge(const SweepPlan& plan) {

@@ -4,6 +4,7 @@
 // fallback decided, and the time-of-contact error against the exact tester.
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -11,6 +12,7 @@
 
 #include "ccdlab/build_info.hpp"
 #include "experiments/cli/commands.hpp"
+#include "experiments/cli/report.hpp"
 #include "framework/config/strategy_spec.hpp"
 #include "framework/queries/evaluate.hpp"
 #include "framework/queries/hard_cases.hpp"
@@ -36,7 +38,7 @@ std::string label(const StrategyChoice& c, const TesterRegistry& registry) {
 }
 
 nlohmann::json score_json(const SetScore& s) {
-  return {{"set", s.set}, {"tester", s.tester}, {"queries", s.queries}, {"positives", s.positives},
+  return {{"set", s.set}, {"scene", s.scene}, {"collection", s.collection}, {"tester", s.tester}, {"queries", s.queries}, {"positives", s.positives},
           {"false_negatives", s.false_negatives}, {"false_positives", s.false_positives}, {"filtered", s.filtered},
           {"fallbacks", s.fallbacks}, {"mean_us", s.mean_us}, {"median_us", s.median_us}, {"p99_us", s.p99_us},
           {"max_us", s.max_us}, {"toi_max_error", s.toi_max_error}, {"toi_mean_error", s.toi_mean_error},
@@ -71,7 +73,7 @@ int validate_command(const ValidateOptions& o) {
   if (!o.out_dir.empty()) {
     create_output_dir(o.out_dir, "--out");
     per_query = OutputFile((fs::path(o.out_dir) / "queries.csv").string(), "--out");
-    per_query << "set,tester,query,truth,hit,route,us,toi,exact_toi\n";
+    per_query << "set,scene,collection,tester,query,origin,truth,hit,route,us,toi,exact_toi\n";
   }
   std::size_t total = 0;
   for (const auto& s : sets) total += s.size();
@@ -89,7 +91,8 @@ int validate_command(const ValidateOptions& o) {
       scores.push_back(score(set, names[t], outcomes, reference));
       if (per_query.is_open())
         for (std::size_t i = 0; i < outcomes.size(); ++i)
-          per_query << fmt::format("{},{},{},{},{},{},{:.4f},{:.17g},{:.17g}\n", set.name, names[t], i, int(set.truth[i]),
+          per_query << fmt::format("{},{},{},{},{},{},{},{},{},{:.4f},{:.17g},{:.17g}\n", set.name, set.scene,
+                                   set.collection, names[t], i, csv_field(set.origin[i]), int(set.truth[i]),
                                    int(outcomes[i].hit), int(outcomes[i].route), outcomes[i].us, outcomes[i].toi,
                                    reference[i].hit ? reference[i].toi_lo : 1.0);
       progress.update(done += long(set.size()));
@@ -106,10 +109,11 @@ int validate_command(const ValidateOptions& o) {
   if (!o.out_dir.empty()) {
     OutputFile csv((fs::path(o.out_dir) / "validate.csv").string(), "--out"),
         jsonl((fs::path(o.out_dir) / "validate.jsonl").string(), "--out");
-    csv << "set,tester,queries,positives,false_negatives,false_positives,filtered,fallbacks,mean_us,median_us,p99_us,"
-           "max_us,toi_max_error,toi_mean_error,toi_late,git_revision\n";
+    csv << "set,scene,collection,tester,queries,positives,false_negatives,false_positives,filtered,fallbacks,mean_us,"
+           "median_us,p99_us,max_us,toi_max_error,toi_mean_error,toi_late,git_revision\n";
     for (const SetScore& s : scores)
-      csv << fmt::format("{},{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.3g},{:.3g},{},{}\n", s.set, s.tester,
+      csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.3g},{:.3g},{},{}\n", s.set,
+                         s.scene, s.collection, s.tester,
                          s.queries, s.positives, s.false_negatives, s.false_positives, s.filtered, s.fallbacks, s.mean_us,
                          s.median_us, s.p99_us, s.max_us, s.toi_max_error, s.toi_mean_error, s.toi_late,
                          build_info::git_revision);
@@ -141,6 +145,32 @@ int validate_command(const ValidateOptions& o) {
     fmt::print("{:<{}}  {:<{}} {:>7} {:>6} {:>5} {:>5} {:>7} {:>7} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.1f} {:>9.2g}\n", s.set,
                set_w, s.tester, tester_w, s.queries, s.positives, s.false_negatives, s.false_positives, s.filtered,
                s.fallbacks, s.mean_us, s.median_us, s.p99_us, s.max_us, s.toi_max_error);
+  // Totals per scene and tester (µs: the mean over all the scene's queries).
+  struct Total {
+    std::size_t queries = 0, hits = 0, fn = 0, fp = 0, filtered = 0, fallbacks = 0;
+    double us = 0;
+  };
+  std::vector<std::pair<std::string, std::string>> order;
+  std::map<std::pair<std::string, std::string>, Total> totals;
+  for (const SetScore& s : scores) {
+    const auto key = std::pair{s.scene, s.tester};
+    auto [it, fresh] = totals.try_emplace(key);
+    if (fresh) order.push_back(key);
+    Total& t = it->second;
+    t.queries += s.queries, t.hits += s.positives, t.fn += s.false_negatives, t.fp += s.false_positives;
+    t.filtered += s.filtered, t.fallbacks += s.fallbacks, t.us += s.mean_us * double(s.queries);
+  }
+  fmt::print("\ntotals per scene\n");
+  for (const auto& key : order) {
+    const Total& t = totals.at(key);
+    fmt::print("{:<{}}  {:<{}} {:>7} {:>6} {:>5} {:>5} {:>7} {:>7} {:>9.3f}\n", key.first + "/*", set_w, key.second,
+               tester_w, t.queries, t.hits, t.fn, t.fp, t.filtered, t.fallbacks, t.queries ? t.us / double(t.queries) : 0.0);
+  }
+  fmt::print("\nset: scene/kind (vertex-face, edge-edge, or the step's file stem); hits: queries whose ground truth is a "
+             "collision;\nFN: collisions the tester missed; FP: non-colliding queries it reported; filter / fallbk: "
+             "queries decided by\nits certified filter / by its fallback; µs per query (each timed --repeat times); ToI "
+             "err: largest |toi − exact toi|\nover the queries both call a hit. --out writes validate.csv and "
+             "queries.csv (one row per query, with its file:line).\n");
   if (o.failures > 0) {
     for (const SetScore& s : scores) {
       if (s.failures.empty()) continue;

@@ -102,4 +102,11 @@ void print_table_row(std::FILE* out, const std::string& step, const StepResult& 
              c.contacts_ee, t.total_ms, t.swept_bv_ms, t.refit_ms, t.traverse_ms, t.narrow_ms, t.orphan_ms);
 }
 
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
 }  // namespace ccdlab::cli

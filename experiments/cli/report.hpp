@@ -27,4 +27,7 @@ double median(std::vector<double> values);
 void print_table_header(std::FILE* out);
 void print_table_row(std::FILE* out, const std::string& step, const StepResult& r);
 
+/// A CSV field: as is, or quoted (doubled quotes inside) when it holds a comma, a quote or a newline.
+std::string csv_field(const std::string& s);
+
 }  // namespace ccdlab::cli

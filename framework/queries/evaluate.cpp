@@ -28,6 +28,8 @@ SetScore score(const QuerySet& set, const std::string& tester, const std::vector
                const std::vector<ToiReference>& reference) {
   SetScore s;
   s.set = set.name;
+  s.scene = set.scene;
+  s.collection = set.collection;
   s.tester = tester;
   s.queries = set.size();
   std::vector<double> us;

@@ -28,6 +28,7 @@ std::vector<QueryOutcome> run_tester(const PrimitiveTester& tester, const QueryS
 
 struct SetScore {
   std::string set, tester;
+  std::string scene, collection;  ///< of the set (QuerySet)
   std::size_t queries = 0, positives = 0;
   std::size_t false_negatives = 0, false_positives = 0;
   std::size_t filtered = 0, fallbacks = 0;  ///< decided by a filter / by the fallback (TestRoute)

@@ -72,6 +72,7 @@ class Generator {
     auto [it, fresh] = sets_.try_emplace(family);
     if (fresh) {
       it->second.name = "hard-cases/" + family;
+      it->second.scene = it->second.collection = "hard-cases";
       it->second.kind = kind;
     }
     return it->second;

@@ -144,26 +144,31 @@ std::vector<QuerySet> load_query_sets(const fs::path& root) {
   } else {
     files.push_back(root);
   }
-  const fs::path base = fs::is_directory(root) ? root : root.parent_path();
   std::vector<QuerySet> sets;
   std::map<std::string, std::size_t> index;
   for (const fs::path& file : files) {
     FileQueries fq = read_csv(file);
-    std::string name;
+    // A set is named scene/kind whatever folder the user pointed at, so a row always says where it comes from.
+    const fs::path abs = fs::absolute(file).lexically_normal();
+    fs::path scene_dir;
+    std::string kind_part;
     if (fq.truth.empty()) {  // simulation layout: <scene>/queries/<stem>.csv + <scene>/mma_bool/<stem>_mma_bool.json
-      const fs::path scene = file.parent_path().parent_path();
-      fq.truth = read_truth_json(scene / "mma_bool" / (file.stem().string() + "_mma_bool.json"), fq.points.size(), file);
-      name = (fs::relative(scene, base) / file.stem()).lexically_normal().generic_string();
-    } else {
-      name = fs::relative(file.parent_path(), base).lexically_normal().generic_string();
-      if (name.empty() || name == ".") name = file.stem().string();
+      scene_dir = abs.parent_path().parent_path();
+      fq.truth = read_truth_json(scene_dir / "mma_bool" / (file.stem().string() + "_mma_bool.json"), fq.points.size(), file);
+      kind_part = file.stem().string();
+    } else {  // handcrafted layout: <scene>/<kind>/*.csv
+      scene_dir = abs.parent_path().parent_path();
+      kind_part = abs.parent_path().filename().string();
     }
-    if (name.starts_with("./")) name = name.substr(2);
+    const std::string scene = scene_dir.filename().empty() ? kind_part : scene_dir.filename().string();
+    const std::string name = scene + "/" + kind_part;
     const ContactKind kind = kind_of(file);
     auto [it, fresh] = index.try_emplace(name, sets.size());
     if (fresh) {
       sets.emplace_back();
       sets.back().name = name;
+      sets.back().scene = scene;
+      sets.back().collection = scene_dir.has_parent_path() ? scene_dir.parent_path().filename().string() : "";
       sets.back().kind = kind;
     }
     QuerySet& s = sets[it->second];

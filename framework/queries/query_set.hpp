@@ -15,7 +15,9 @@
 namespace ccdlab {
 
 struct QuerySet {
-  std::string name;  ///< e.g. "handcrafted/unit-tests/edge-edge", "simulation/cloth-funnel/227ee"
+  std::string name;        ///< scene/kind: "erleben-wedges/edge-edge", "cloth-funnel/227ee", "hard-cases/two-roots"
+  std::string scene;       ///< "erleben-wedges", "cloth-funnel", "hard-cases"
+  std::string collection;  ///< the folder above the scene ("handcrafted", "simulation"), "hard-cases", or ""
   ContactKind kind = ContactKind::vf;
   std::vector<VertexFaceQuery> vf;  ///< the queries, when kind == vf
   std::vector<EdgeEdgeQuery> ee;    ///< when kind == ee
@@ -27,7 +29,8 @@ struct QuerySet {
 };
 
 /// Reads one CSV file, or every *.csv under a directory (sorted), merging the files of one directory into
-/// one set (named by its folder relative to `root`; simulation sets by scene/stem). Throws Error naming file,
+/// one set, named scene/kind whatever `root` is: <scene>/<kind>/*.csv (handcrafted) → "scene/kind",
+/// <scene>/queries/<stem>.csv (simulation) → "scene/stem". Throws Error naming file,
 /// line and column on malformed input: wrong column count, non-integer or zero denominator, a value that is
 /// not exactly a finite double, a truncated query, inconsistent or missing ground truth.
 std::vector<QuerySet> load_query_sets(const std::filesystem::path& root);

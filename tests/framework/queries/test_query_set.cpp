@@ -36,6 +36,20 @@ TEST(QuerySet, ReadsHandcraftedLayoutWithTruthColumn) {
   EXPECT_NE(sets[0].origin[1].find("data_0_1.csv:1"), std::string::npos);
 }
 
+TEST(QuerySet, SetsAreNamedBySceneAndKindWhateverTheRoot) {
+  const fs::path dir = test::temp_dir("qs_names");
+  write(dir / "handcrafted" / "wedges" / "edge-edge" / "data_0_0.csv", kQuery7);
+  for (const fs::path& root : {dir, dir / "handcrafted", dir / "handcrafted" / "wedges",
+                               dir / "handcrafted" / "wedges" / "edge-edge",
+                               dir / "handcrafted" / "wedges" / "edge-edge" / "data_0_0.csv"}) {
+    const auto sets = load_query_sets(root);
+    ASSERT_EQ(sets.size(), 1u) << root;
+    EXPECT_EQ(sets[0].name, "wedges/edge-edge") << root;
+    EXPECT_EQ(sets[0].scene, "wedges") << root;
+    EXPECT_EQ(sets[0].collection, "handcrafted") << root;
+  }
+}
+
 TEST(QuerySet, ReadsSimulationLayoutWithJsonTruth) {
   const fs::path dir = test::temp_dir("qs_sim");
   std::string six;
