@@ -21,34 +21,78 @@ std::string resolve_path(const std::string& p, const std::string& config_path, b
   return (fs::path(config_path).parent_path() / path).lexically_normal().string();
 }
 
+/// The frame files of `node` (keys frames, first, last; `where` is its key path): a list, a pattern with
+/// first..last, or (when `one_allowed`, a body that does not move) a single file.
+std::vector<std::string> read_frame_files(const YamlReader& r, const YAML::Node& node, const std::string& where,
+                                          const std::string& config_path, bool one_allowed) {
+  const YAML::Node frames = node["frames"];
+  if (!frames) r.error(node, where, "a map with 'frames' (a list of files, or a pattern with first and last)");
+  const bool cli = r.from_command_line(where + ".frames");
+  std::vector<std::string> files;
+  if (frames.IsSequence()) {
+    if (node["first"] || node["last"]) r.error(node, where, "'first'/'last' only with a frame pattern");
+    for (std::size_t i = 0; i < frames.size(); ++i)
+      files.push_back(resolve_path(r.string(frames[i], fmt::format("{}.frames[{}]", where, i)), config_path, cli));
+  } else if (one_allowed && !node["first"] && !node["last"] &&
+             r.string(frames, where + ".frames").find('%') == std::string::npos) {
+    files.push_back(resolve_path(r.string(frames, where + ".frames"), config_path, cli));
+  } else {
+    std::string pattern = resolve_path(r.string(frames, where + ".frames"), config_path, cli);
+    if (!node["first"] || !node["last"]) r.error(node, where, "keys 'first' and 'last' with a frame pattern");
+    int first = int(r.integer(node["first"], where + ".first", 0, 1e9));
+    int last = int(r.integer(node["last"], where + ".last", 0, 1e9));
+    if (last <= first) r.error(node["last"], where + ".last", fmt::format("an integer > first ({})", first));
+    files = expand_frame_pattern(pattern, first, last);
+  }
+  if (files.size() < (one_allowed ? 1u : 2u))
+    r.error(frames, where + ".frames", one_allowed ? "at least 1 frame" : "at least 2 frames");
+  return files;
+}
+
 SceneConfig read_scene(const YamlReader& r, const YAML::Node& node, const std::string& config_path,
                        const Registries& reg) {
   SceneConfig scene;
   r.require_map(node, "scene");
-  if (node["builtin"] && node["frames"])
-    r.error(node, "scene", "either 'builtin' (a generated scene) or 'frames' (mesh files), not both");
+  const int kinds = int(bool(node["builtin"])) + int(bool(node["frames"])) + int(bool(node["bodies"]));
+  if (kinds > 1)
+    r.error(node, "scene", "one of 'builtin' (a generated scene), 'frames' (mesh files) or 'bodies' (several bodies)");
   if (node["frames"]) {
     scene.builtin = false;
     r.check_keys(node, "scene", {"frames", "first", "last", "self_collision"});
-    const YAML::Node frames = node["frames"];
-    const bool cli = r.from_command_line("scene.frames");
-    if (frames.IsSequence()) {
-      if (node["first"] || node["last"]) r.error(node, "scene", "'first'/'last' only with a frame pattern");
-      for (std::size_t i = 0; i < frames.size(); ++i)
-        scene.files.push_back(resolve_path(r.string(frames[i], fmt::format("scene.frames[{}]", i)), config_path, cli));
-    } else {
-      std::string pattern = resolve_path(r.string(frames, "scene.frames"), config_path, cli);
-      if (!node["first"] || !node["last"]) r.error(node, "scene", "keys 'first' and 'last' with a frame pattern");
-      int first = int(r.integer(node["first"], "scene.first", 0, 1e9));
-      int last = int(r.integer(node["last"], "scene.last", 0, 1e9));
-      if (last <= first) r.error(node["last"], "scene.last", fmt::format("an integer > first ({})", first));
-      scene.files = expand_frame_pattern(pattern, first, last);
-    }
-    if (scene.files.size() < 2) r.error(frames, "scene.frames", "at least 2 frames");
+    scene.files = read_frame_files(r, node, "scene", config_path, false);
     if (node["self_collision"]) scene.self_collision = r.boolean(node["self_collision"], "scene.self_collision");
     return scene;
   }
-  if (!node["builtin"]) r.error(node, "scene", "a map with 'builtin: NAME' or 'frames: PATTERN'");
+  if (const YAML::Node bodies = node["bodies"]) {
+    scene.builtin = false;
+    r.check_keys(node, "scene", {"bodies"});
+    if (!bodies.IsSequence() || bodies.size() == 0)
+      r.error(bodies, "scene.bodies", "a list of bodies ({name, frames, self_collision, kinematic})");
+    std::size_t frames = 1;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const std::string where = fmt::format("scene.bodies[{}]", i);
+      const YAML::Node b = bodies[i];
+      r.require_map(b, where);
+      r.check_keys(b, where, {"name", "frames", "first", "last", "self_collision", "kinematic"});
+      BodyFiles body;
+      body.name = b["name"] ? r.string(b["name"], where + ".name") : fmt::format("body{}", i);
+      body.files = read_frame_files(r, b, where, config_path, true);
+      if (b["self_collision"]) body.self_collision = r.boolean(b["self_collision"], where + ".self_collision");
+      if (b["kinematic"]) body.kinematic = r.boolean(b["kinematic"], where + ".kinematic");
+      if (body.kinematic && b["self_collision"] && body.self_collision)
+        r.error(b["self_collision"], where + ".self_collision", "false or absent for a kinematic body (obstacles never self-collide)");
+      if (body.files.size() > 1) {
+        if (frames > 1 && body.files.size() != frames)
+          r.error(b["frames"], where + ".frames",
+                  fmt::format("{} frames like the bodies before it (one file per frame), or one file (a still body)", frames));
+        frames = body.files.size();
+      }
+      scene.bodies.push_back(std::move(body));
+    }
+    if (frames < 2) r.error(bodies, "scene.bodies", "at least one body with 2 or more frames");
+    return scene;
+  }
+  if (!node["builtin"]) r.error(node, "scene", "a map with 'builtin: NAME', 'frames: PATTERN' or 'bodies: […]'");
   // Built-in scene: its parameters sit beside 'builtin' in the same map.
   const std::string generator = r.string(node["builtin"], "scene.builtin");
   if (const auto* entry = reg.scenes.find(generator)) {
@@ -217,7 +261,15 @@ nlohmann::json to_json(const ExperimentConfig& c) {
     s.erase("name");
     j["scene"] = s;
   } else {
-    j["scene"] = {{"frames", c.scene.files}, {"self_collision", c.scene.self_collision}};
+    if (c.scene.bodies.empty()) {
+      j["scene"] = {{"frames", c.scene.files}, {"self_collision", c.scene.self_collision}};
+    } else {
+      nlohmann::json bodies = nlohmann::json::array();
+      for (const BodyFiles& b : c.scene.bodies)
+        bodies.push_back({{"name", b.name}, {"frames", b.files}, {"self_collision", b.self_collision && !b.kinematic},
+                          {"kinematic", b.kinematic}});
+      j["scene"] = {{"bodies", bodies}};
+    }
   }
   j["bv"] = {{"k", c.k}, {"width", c.width}};
   j["hierarchy"] = params_json(c.hierarchy);
@@ -253,6 +305,7 @@ MeshSequence make_scene(const ExperimentConfig& c, const Registries& reg) {
     }
     return reg.scenes.make(c.scene.generator);
   }
+  if (!c.scene.bodies.empty()) return load_body_files(c.scene.bodies);
   return load_frame_files(c.scene.files, c.scene.self_collision);
 }
 

@@ -39,6 +39,7 @@ struct SceneConfig {
   StrategyChoice generator;         ///< builtin: the scene generator and its parameters
   std::vector<std::string> files;   ///< from files: one mesh file per frame
   bool self_collision = true;       ///< from files
+  std::vector<BodyFiles> bodies;    ///< from files, several bodies (scene: {bodies: […]}); empty otherwise
 };
 
 struct OutputConfig {

@@ -40,9 +40,22 @@ class MeshSequence {
 /// "dir/%03d.ply" with first..last → the file names (printf-style integer pattern, exactly one %d).
 std::vector<std::string> expand_frame_pattern(const std::string& pattern, int first, int last);
 
-/// A sequence read from mesh files (OBJ or PLY), one self-colliding cloth body. The first file defines the
-/// topology; every later file must have the same vertex count and the same faces, else Error names it. Every
+/// One body of a scene read from files: its frames (one file per frame, or one file for a body that never
+/// moves) and its flags. A kinematic body is an obstacle: its motion is given, it is never tested against itself
+/// nor against other kinematic bodies (bodies.hpp).
+struct BodyFiles {
+  std::string name = "mesh";
+  std::vector<std::string> files;
+  bool self_collision = true;
+  bool kinematic = false;
+};
+
+/// A sequence read from mesh files (OBJ or PLY): the bodies' meshes concatenated, in order, into one topology.
+/// Each body's first file defines its topology; every later file must have the same vertex count and the same
+/// faces, else Error names it. Bodies with more than one file must all have the same number of frames. Every
 /// file is read and checked once here, before any step; frames are read again on demand.
+MeshSequence load_body_files(const std::vector<BodyFiles>& bodies);
+/// One self-colliding cloth body (`scene: {frames: …}`).
 MeshSequence load_frame_files(const std::vector<std::string>& files, bool self_collision = true);
 
 }  // namespace ccdlab
