@@ -1,5 +1,5 @@
 """pytest for the ccdlab Python module (build/python): answers, options and errors on meshes made here, and the
-same contacts as the CLI on the real cloth-funnel step (skipped where ../shared/data is absent)."""
+same contacts (ids, times, coordinates, normals) as the CLI on the real cloth-funnel step (skipped where ../shared/data is absent)."""
 import csv
 import subprocess
 import sys
@@ -79,8 +79,12 @@ def test_funnel_contacts_equal_the_cli(tmp_path):
     rows = list(csv.DictReader((tmp_path / "c.csv").open()))
     want = {"vf": [], "ee": []}
     for row in rows:
-        want[row["kind"]].append(([int(row[c]) for c in "abcd"], float(row["toi"])))
+        want[row["kind"]].append(([int(row[c]) for c in "abcd"], float(row["toi"]), [float(row["u"]), float(row["v"])],
+                                  [float(row[c]) for c in ("nx", "ny", "nz")]))
     assert len(rows) == 134  # the step's true contacts (../shared/data ground truth)
     for kind in ("vf", "ee"):
-        assert r[kind].tolist() == [ids for ids, _ in want[kind]]
-        assert r[kind + "_toi"].tolist() == pytest.approx([t for _, t in want[kind]], abs=1e-15)
+        assert r[kind].tolist() == [w[0] for w in want[kind]]
+        assert r[kind + "_toi"].tolist() == pytest.approx([w[1] for w in want[kind]], abs=1e-15)
+        assert np.allclose(r[kind + "_coords"], np.array([w[2] for w in want[kind]]).reshape(-1, 2), rtol=0, atol=1e-15)
+        assert np.allclose(r[kind + "_normal"], np.array([w[3] for w in want[kind]]).reshape(-1, 3), rtol=0, atol=1e-15)
+        assert np.allclose(np.linalg.norm(r[kind + "_normal"], axis=1), 1.0)

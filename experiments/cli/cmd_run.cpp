@@ -57,7 +57,7 @@ nlohmann::json run_experiment(const ExperimentConfig& config, const Registries& 
   }
   if (config.output.contacts) {
     contacts_csv = open("contacts.csv");
-    contacts_csv << "step,kind,a,b,c,d,toi\n";
+    contacts_csv << "step," << kContactColumns << "\n";
   }
 
   const bool table = !o.json && !o.quiet;
@@ -114,7 +114,7 @@ nlohmann::json run_experiment(const ExperimentConfig& config, const Registries& 
       jsonl << j.dump() << "\n";
     }
     if (contacts_csv.is_open())
-      for (const Contact& c : r.contacts) contacts_csv << s << "," << contact_row(c) << "\n";
+      for (const Contact& c : r.contacts) contacts_csv << s << "," << contact_row(c, x_t0, x_t1) << "\n";
     x_t0 = std::move(x_t1);
     progress.update(s + 1);
   }

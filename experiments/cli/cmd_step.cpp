@@ -57,8 +57,8 @@ int step_command(const StepOptions& o) {
   const std::uint64_t hash = contact_set_hash(r.contacts);
 
   if (!o.contacts_csv.empty()) {
-    contacts << "kind,a,b,c,d,toi\n";
-    for (const Contact& c : r.contacts) contacts << contact_row(c) << "\n";
+    contacts << kContactColumns << "\n";
+    for (const Contact& c : r.contacts) contacts << contact_row(c, m0.positions, m1.positions) << "\n";
     contacts.commit();
   }
   if (o.json) {

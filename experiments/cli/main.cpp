@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"first_free", "fixed"}))->capture_default_str();
   step_cmd->add_option("--memory-limit", step.memory_limit, "resident memory the step may use: 8GiB, 60%, none (above the "
                        "predicted need it streams candidates to the narrow phase)")->capture_default_str();
-  step_cmd->add_option("--contacts", step.contacts_csv, "write contacts to this CSV (kind,a,b,c,d,toi)");
+  step_cmd->add_option("--contacts", step.contacts_csv, "write contacts to this CSV (kind,a,b,c,d,toi,u,v,nx,ny,nz)");
   step_cmd->add_flag("--json", step.json, "print JSON instead of the table");
 
   BenchOptions bench;

@@ -75,9 +75,10 @@ std::string csv_row(const StepResult& r, std::uint64_t step_hash) {
                      t.total_ms, double(r.memory.peak_rss_bytes) / (1 << 20), r.memory.slices, step_hash);
 }
 
-std::string contact_row(const Contact& c) {
-  return fmt::format("{},{},{},{},{},{:.17g}", to_string(c.kind), c.vertices[0], c.vertices[1], c.vertices[2],
-                     c.vertices[3], c.toi);
+std::string contact_row(const Contact& c, const Positions& x_t0, const Positions& x_t1) {
+  const Vec3 n = contact_normal(c, x_t0, x_t1);
+  return fmt::format("{},{},{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}", to_string(c.kind), c.vertices[0],
+                     c.vertices[1], c.vertices[2], c.vertices[3], c.toi, c.coords[0], c.coords[1], n.x(), n.y(), n.z());
 }
 
 double median(std::vector<double> v) {

@@ -18,7 +18,10 @@ std::string csv_header();
 std::string csv_row(const StepResult& r, std::uint64_t step_hash);
 
 /// One contact as "vf,v,f0,f1,f2,toi" or "ee,a0,a1,b0,b1,toi" (vertex ids of the input mesh).
-std::string contact_row(const Contact& c);
+std::string contact_row(const Contact& c, const Positions& x_t0, const Positions& x_t1);
+/// The columns of contact_row: kind, the four vertex ids, time of contact, the two coordinates (VF: barycentric
+/// weights of f1, f2; EE: parameters on edge a, edge b) and the unit contact normal.
+inline constexpr const char* kContactColumns = "kind,a,b,c,d,toi,u,v,nx,ny,nz";
 
 /// Median of a list (0 for an empty list).
 double median(std::vector<double> values);

@@ -110,17 +110,6 @@ PipelineStrategies strategies_from(const py::kwargs& options) {
   return s;
 }
 
-Vec3 at(const Positions& x0, const Positions& x1, Index v, double t) { return (1 - t) * x0[v] + t * x1[v]; }
-
-/// The unit normal of a contact at its time: the face's for VF, the two edges' cross product for EE (zero
-/// when the face is degenerate or the edges parallel there).
-Vec3 contact_normal(const Contact& c, const Positions& x0, const Positions& x1) {
-  const auto p = [&](int i) { return at(x0, x1, c.vertices[std::size_t(i)], c.toi); };
-  const Vec3 n = c.kind == ContactKind::vf ? (p(2) - p(1)).cross(p(3) - p(1)) : (p(1) - p(0)).cross(p(3) - p(2));
-  const double len = n.norm();
-  return len > 0 ? Vec3(n / len) : Vec3::Zero();
-}
-
 py::dict result_dict(const StepResult& r, const Positions& x0, const Positions& x1) {
   std::size_t nvf = 0;
   for (const Contact& c : r.contacts) nvf += c.kind == ContactKind::vf;

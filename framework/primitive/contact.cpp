@@ -40,4 +40,14 @@ std::array<double, 2> contact_coords(const EdgeEdgeQuery& q, double t) {
 
 std::string_view to_string(ContactKind kind) { return kind == ContactKind::vf ? "vf" : "ee"; }
 
+Vec3 contact_normal(const Contact& c, const Positions& x_t0, const Positions& x_t1) {
+  const auto p = [&](int i) {
+    const Index v = c.vertices[std::size_t(i)];
+    return Vec3((1 - c.toi) * x_t0[v] + c.toi * x_t1[v]);
+  };
+  const Vec3 n = c.kind == ContactKind::vf ? Vec3((p(2) - p(1)).cross(p(3) - p(1))) : Vec3((p(1) - p(0)).cross(p(3) - p(2)));
+  const double len = n.norm();
+  return len > 0 ? Vec3(n / len) : Vec3::Zero();
+}
+
 }  // namespace ccdlab

@@ -62,6 +62,11 @@ struct Contact {
   [[nodiscard]] auto key() const { return std::tuple(kind, feature_a, feature_b); }
 };
 
+/// The unit normal of a contact at its time of contact, the features moving linearly from x_t0 to x_t1: the
+/// face's normal (f1 − f0) × (f2 − f0) for VF, edge a × edge b for EE; zero where the face is degenerate or the
+/// edges parallel at that time.
+Vec3 contact_normal(const Contact& c, const Positions& x_t0, const Positions& x_t1);
+
 /// Sorts contacts by feature identity.
 void sort_contacts(std::vector<Contact>& contacts);
 
