@@ -21,7 +21,7 @@
 namespace ccdlab {
 
 /// bv.width when a config does not say: binary. The 4-wide view pays only on large trees whose volumes miss the
-/// cache (n-body 146K triangles: traversal −15%, step −5%) and costs a second refit and ~300 bytes per triangle;
+/// cache (n-body 146K triangles, 1 thread: traversal −21%, step −3%) and costs a second refit and ~300 bytes per triangle;
 /// on 18K–80K-triangle steps it is even (docs/wide-bvh.md).
 inline constexpr int kDefaultBvhWidth = 2;
 
