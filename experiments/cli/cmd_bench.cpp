@@ -28,8 +28,15 @@ struct Config {
   std::string scheduler;
   int threads;
   NarrowMode narrow = NarrowMode::batched;
+  /// > 0: a recording run — 1 thread, the BVTT split for `split` threads — whose task costs the simulator replays
+  /// on `split` cores (phc and static cut c·threads tasks, so the 1-thread split would misrepresent them).
+  /// Timed in the same alternating rounds, checked for the same hash, left out of the tables.
+  int split = 0;
   /// How the configuration is named in tables and files: the scheduler, "/scalar" for the scalar narrow phase.
   [[nodiscard]] std::string label() const { return narrow == NarrowMode::batched ? scheduler : scheduler + "/scalar"; }
+  [[nodiscard]] std::string name() const {
+    return split ? fmt::format("{} x1 split for {}", label(), split) : fmt::format("{} x{}", label(), threads);
+  }
 };
 
 struct Measured {
@@ -109,6 +116,16 @@ int bench_command(const BenchOptions& o) {
   for (NarrowMode n : narrow_modes)
     for (const auto& s : schedulers)
       for (int t : threads) configs.push_back({s, t, n});
+  // Recording runs for the simulator: a scheduler whose tasks depend on the thread count is recorded, on one
+  // thread, split as each simulated core count would split it.
+  const std::size_t measured_configs = configs.size();
+  for (std::size_t i = 0; i < measured_configs; ++i) {
+    if (configs[i].threads != 1) continue;
+    if (!reg.schedulers.make({configs[i].scheduler, reg.schedulers.find(configs[i].scheduler)->defaults()})->splits_by_threads())
+      continue;
+    for (int n : cores)
+      if (n > 1) configs.push_back({configs[i].scheduler, 1, configs[i].narrow, n});
+  }
   std::vector<Measured> measured(configs.size());
 
   // Round −1 warms caches, page tables and the OpenMP thread pools; it is not timed into any result.
@@ -122,6 +139,7 @@ int bench_command(const BenchOptions& o) {
       c.scheduler = {configs[i].scheduler, reg.schedulers.find(configs[i].scheduler)->defaults()};
       if (config.scheduler.name == configs[i].scheduler) c.scheduler = config.scheduler;  // keep --set params
       c.threads = configs[i].threads;
+      c.split_threads = configs[i].split;
       c.narrow.mode = configs[i].narrow;
       CcdPipeline pipeline(scene.topology(), scene.bodies(), make_strategies(c, reg));
       Measured& m = measured[i];
@@ -151,10 +169,10 @@ int bench_command(const BenchOptions& o) {
       }
       if (warmup || round == 0) {
         if (round == 0 && hash != m.hash)
-          fail("bench: {} x{} changed its answer between the warm-up and round 1", configs[i].label(), configs[i].threads);
+          fail("bench: {} changed its answer between the warm-up and round 1", configs[i].name());
         m.hash = hash;
       } else if (hash != m.hash) {
-        fail("bench: {} x{} changed its answer between rounds", configs[i].label(), configs[i].threads);
+        fail("bench: {} changed its answer between rounds", configs[i].name());
       }
       if (!warmup) m.ms_per_step.push_back(total / steps);
       progress.update(++done);
@@ -167,14 +185,14 @@ int bench_command(const BenchOptions& o) {
     const double spread = (*hi - *lo) / median(measured[i].ms_per_step);
     measured[i].spread = spread;
     if (spread > kNoiseThreshold)
-      fmt::print(stderr, "ccdlab: warning: bench: {} x{}: rounds differ by {:.0f}% ({:.3f} to {:.3f} ms/step), above the "
+      fmt::print(stderr, "ccdlab: warning: bench: {}: rounds differ by {:.0f}% ({:.3f} to {:.3f} ms/step), above the "
                  "{:.0f}% noise threshold: other load on the machine? more --rounds?\n",
-                 configs[i].label(), configs[i].threads, 100 * spread, *lo, *hi, 100 * kNoiseThreshold);
+                 configs[i].name(), 100 * spread, *lo, *hi, 100 * kNoiseThreshold);
   }
 
   // Reference: sequential at 1 thread (or the first configuration).
   std::size_t ref = configs.size();
-  for (std::size_t i = 0; i < configs.size(); ++i)
+  for (std::size_t i = 0; i < measured_configs; ++i)
     if (ref == configs.size() && configs[i].scheduler == "sequential" && configs[i].threads == 1) ref = i;
   if (ref == configs.size()) ref = 0;
   const double ref_ms = median(measured[ref].ms_per_step);
@@ -208,7 +226,7 @@ int bench_command(const BenchOptions& o) {
                "ms/step", "speedup", "min ms", "(min)", "BV tests", "lambda", "traverse", "serial", "imbal.", "front", "front MB");
   }
   nlohmann::json out_rows = nlohmann::json::array();
-  for (std::size_t i = 0; i < configs.size(); ++i) {
+  for (std::size_t i = 0; i < measured_configs; ++i) {
     const Measured& m = measured[i];
     const double ms = median(m.ms_per_step);
     const double ms_min = *std::min_element(m.ms_per_step.begin(), m.ms_per_step.end());
@@ -237,15 +255,18 @@ int bench_command(const BenchOptions& o) {
   nlohmann::json sim_rows = nlohmann::json::array();
   if (!o.json) fmt::print("\nsimulated ms/step (speed-up vs {} x1) from 1-thread task costs; [measured] where run:\n",
                           configs[ref].label());
-  for (std::size_t i = 0; i < configs.size(); ++i) {
+  for (std::size_t i = 0; i < measured_configs; ++i) {
     if (configs[i].threads != 1) continue;
     std::string line = fmt::format("{:>10}", configs[i].label());
     for (int n : cores) {
+      std::size_t recorded = i;  // the run split for n threads, where the scheduler's split depends on it
+      for (std::size_t j = measured_configs; j < configs.size(); ++j)
+        if (configs[j].label() == configs[i].label() && configs[j].split == n) recorded = j;
       double predicted = 0;
-      for (const auto& step_traces : measured[i].median_traces()) predicted += simulate_step(step_traces, n);
+      for (const auto& step_traces : measured[recorded].median_traces()) predicted += simulate_step(step_traces, n);
       predicted /= steps;
       double measured_ms = -1;
-      for (std::size_t j = 0; j < configs.size(); ++j)
+      for (std::size_t j = 0; j < measured_configs; ++j)
         if (configs[j].label() == configs[i].label() && configs[j].threads == n) measured_ms = median(measured[j].ms_per_step);
       scaling << fmt::format("{},{},{:.4f},{:.4f},{}\n", configs[i].label(), n, predicted, ref_ms / predicted,
                              measured_ms < 0 ? std::string() : fmt::format("{:.4f}", measured_ms));
@@ -265,13 +286,17 @@ int bench_command(const BenchOptions& o) {
   for (int n : cores)
     if (n <= 8) probe = std::max(probe, n);
   if (!o.json) fmt::print("\nper phase, ms/step at 1 core -> {} simulated cores (serial part):\n", probe);
-  for (std::size_t i = 0; i < configs.size(); ++i) {
+  for (std::size_t i = 0; i < measured_configs; ++i) {
     if (configs[i].threads != 1) continue;
     std::map<std::string, std::array<double, 3>> phases;  // 1 core, N cores, serial
+    std::size_t recorded = i;
+    for (std::size_t j = measured_configs; j < configs.size(); ++j)
+      if (configs[j].label() == configs[i].label() && configs[j].split == probe) recorded = j;
     for (const auto& step_traces : measured[i].median_traces())
+      for (const PhaseTrace& t : step_traces) phases[t.phase][0] += simulate_phase(t, 1) / steps;
+    for (const auto& step_traces : measured[recorded].median_traces())
       for (const PhaseTrace& t : step_traces) {
         auto& acc = phases[t.phase];
-        acc[0] += simulate_phase(t, 1) / steps;
         acc[1] += simulate_phase(t, probe) / steps;
         acc[2] += t.serial_ms / steps;
       }

@@ -314,6 +314,7 @@ PipelineStrategies make_strategies(const ExperimentConfig& c, const Registries& 
   s.k = c.k;
   s.width = c.width;
   s.threads = c.threads;
+  s.split_threads = c.split_threads;
   s.restructure_threshold = c.restructure_threshold;
   s.normal_cones = c.normal_cones;
   s.narrow = c.narrow;

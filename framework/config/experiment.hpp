@@ -58,6 +58,7 @@ struct ExperimentConfig {
   StrategyChoice hierarchy{"median", {}};
   StrategyChoice scheduler{"sequential", {}};
   int threads = 1;
+  int split_threads = 0;             ///< not in YAML: `ccdlab bench`'s recording runs (PipelineStrategies::split_threads)
   StrategyChoice tester{"float", {}};
   double restructure_threshold = 0;  ///< restructure: {threshold: …}; 0 = off
   bool normal_cones = false;         ///< normal_cones: true — continuous normal-cone culling of self tests

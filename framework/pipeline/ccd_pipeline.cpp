@@ -112,6 +112,7 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
     BodyState& a = bodies_[i];
     BodyState& b = bodies_[j];
     TraversalPass pass{int(passes_.size()), &mesh_, &a.bvh, &a.node_bvs, &b.bvh, &b.node_bvs, i == j, strategies_.threads};
+    pass.split_threads = strategies_.split_threads > 0 ? strategies_.split_threads : strategies_.threads;
     if (i == j && strategies_.normal_cones) pass.skip_root = &a.skip_root;
     if (strategies_.width == 4) {
       pass.wide_layout_a = &a.wide_layout;

@@ -23,6 +23,9 @@ struct PipelineStrategies {
   int k = 18;  ///< k-DOP: 6, 14, 18 or 26
   int width = kDefaultBvhWidth;  ///< BVH width the traversal reads: 2 (binary) or 4 (framework/hierarchy/wide_bvh.hpp)
   int threads = 1;  ///< OpenMP threads for every stage
+  /// The thread count the BVTT is split for (phc and static cut c·N tasks); 0 = `threads`. `ccdlab bench` runs
+  /// 1 thread with split_threads = N to record the tasks N cores would get, so the simulator replays them.
+  int split_threads = 0;
   /// Adaptive restructuring: rebuild a sub-tree when its quality (Σ sizes of inner nodes ÷ size of its root)
   /// exceeds this × its value at the last (re)build. 0 = off.
   double restructure_threshold = 0;

@@ -4,7 +4,8 @@
 //   dynamic       : list scheduling — tasks in their recorded order, each to the core that frees up first
 //                   (what OpenMP's schedule(dynamic) does)
 //   static_chunks : N equal-count contiguous chunks, one per core, no rebalancing; the slowest chunk decides
-// and the phase's serial part stays serial. What it does not model: memory-bandwidth contention, cache
+// and the phase's serial part stays serial. Where a scheduler's tasks depend on the thread count (phc, static:
+// TraversalScheduler::splits_by_threads), the trace replayed on N cores must come from a run split for N threads. What it does not model: memory-bandwidth contention, cache
 // effects of sharing, fork/join overhead — so it is an upper bound on speed-up, validated against real runs
 // where they can be measured (`ccdlab bench`).
 #include <vector>

@@ -80,7 +80,7 @@ void run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, i
 
 namespace ccdlab {
 
-/// Breadth-first split of the pass's BVTT into ≥ tasks_per_thread·threads tasks (serial, timed as the trace's
+/// Breadth-first split of the pass's BVTT into ≥ tasks_per_thread·split_threads tasks (serial, timed as the trace's
 /// serial part), then the tasks on threads. Shared by `phc` (dynamic) and `static` (fixed chunks).
 inline void split_and_run(const TraversalPass& pass, int tasks_per_thread, Distribution dist, const char* phase,
                           TraversalOutput& out, std::vector<PhaseTrace>& traces) {
@@ -88,7 +88,7 @@ inline void split_and_run(const TraversalPass& pass, int tasks_per_thread, Distr
   with_bvtt_view(pass, [&](const auto& view) {
     PhaseTrace trace{phase, dist, 0, {}, {}};
     const auto t0 = std::chrono::steady_clock::now();
-    const std::size_t want = std::size_t(tasks_per_thread) * std::size_t(pass.threads);
+    const std::size_t want = std::size_t(tasks_per_thread) * std::size_t(pass.split_threads);
     std::vector<BvttNode> tasks = expand_breadth_first(view, want, out, pass.root);
     const double serial = ms_between(t0, std::chrono::steady_clock::now());
     trace.serial_ms += serial;

@@ -32,6 +32,7 @@ struct TraversalPass {
   const AnyBvs* bvs_b = nullptr;
   bool self = true;
   int threads = 1;  ///< OpenMP threads the scheduler may use
+  int split_threads = 1;  ///< threads a decomposition is cut for (== threads, except when bench records traces)
   const std::vector<Index>* skip_root = nullptr;  ///< normal-cone culling of self tests (self passes), or none
   /// The 4-wide views of both hierarchies (bv.width: 4), refit with the binary volumes; nullptr for width 2.
   /// traverse_bvtt walks them when both are there; the front scheduler keeps its binary front either way.
@@ -74,6 +75,9 @@ class TraversalScheduler {
   /// Drops whatever state was kept for pass `id` across steps (a BVTT front): memory-bounded steps release
   /// each slice's state once its candidates are tested. Stateless schedulers keep nothing.
   virtual void release(int /*pass_id*/) {}
+  /// True when the tasks depend on the thread count (phc and static cut c·threads tasks): the simulator must
+  /// then replay, for N cores, a run split for N threads (TraversalPass::split_threads), not the 1-thread split.
+  [[nodiscard]] virtual bool splits_by_threads() const { return false; }
 };
 
 }  // namespace ccdlab

@@ -16,6 +16,7 @@ class PhcScheduler final : public TraversalScheduler {
   explicit PhcScheduler(Params p) : params_(p) {}
   [[nodiscard]] std::string_view name() const override { return "phc"; }
   void collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) override;
+  [[nodiscard]] bool splits_by_threads() const override { return true; }
 
  private:
   Params params_{};

@@ -17,6 +17,7 @@ class StaticScheduler final : public TraversalScheduler {
   explicit StaticScheduler(Params p) : params_(p) {}
   [[nodiscard]] std::string_view name() const override { return "static"; }
   void collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) override;
+  [[nodiscard]] bool splits_by_threads() const override { return true; }
 
  private:
   Params params_{};

@@ -114,6 +114,36 @@ std::map<std::pair<Index, Index>, int> coverage(const BvhTopology& bvh, const st
   return cover;
 }
 
+// The simulator replays, for N cores, a 1-thread run split for N threads (bench's recording runs): that run must
+// cut exactly the tasks an N-thread run cuts, and only the schedulers that say so depend on the thread count.
+TEST(Schedulers, ARunSplitForNThreadsCutsTheTasksOfAnNThreadRun) {
+  const MeshSequence scene = small_scene();
+  const Positions x0 = scene.frame(0), x1 = scene.frame(1);
+  auto traverse_tasks = [&](const std::string& scheduler, int threads, int split) {
+    PipelineStrategies s = make(scheduler, {}, threads);
+    s.split_threads = split;
+    CcdPipeline p(scene.topology(), scene.bodies(), std::move(s));
+    const StepResult r = p.step(x0, x1);
+    std::size_t tasks = 0;
+    for (const PhaseTrace& t : r.traces)
+      if (t.phase == "traverse") tasks += t.task_ms.size();
+    return std::pair{tasks, contact_set_hash(r.contacts)};
+  };
+  for (const std::string scheduler : {"phc", "static"}) {
+    EXPECT_TRUE(scheduler_registry().make({scheduler, scheduler_registry().find(scheduler)->defaults()})->splits_by_threads()) << scheduler;
+    const auto one = traverse_tasks(scheduler, 1, 0);
+    const auto four = traverse_tasks(scheduler, 4, 0);
+    const auto recorded = traverse_tasks(scheduler, 1, 4);
+    EXPECT_GT(four.first, one.first) << scheduler << ": c·threads tasks";
+    EXPECT_EQ(recorded.first, four.first) << scheduler;
+    EXPECT_EQ(recorded.second, one.second) << scheduler;
+  }
+  for (const std::string scheduler : {"sequential", "front"}) {
+    EXPECT_FALSE(scheduler_registry().make({scheduler, scheduler_registry().find(scheduler)->defaults()})->splits_by_threads());
+    EXPECT_EQ(traverse_tasks(scheduler, 1, 4).first, traverse_tasks(scheduler, 1, 0).first) << scheduler;
+  }
+}
+
 TEST(FrontScheduler, FrontCoversEveryNonAdjacentLeafPairExactlyOnceAndShrinksWhenContactEnds) {
   // Two parallel sheets (one self-colliding body) that approach, touch and separate again.
   MeshData sheets = test::concat(test::grid(8, 8), test::grid(8, 8));
