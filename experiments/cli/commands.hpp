@@ -34,6 +34,16 @@ struct SweepOptions {
 };
 int sweep_command(const SweepOptions& o);
 
+struct ExportOptions {
+  std::string config;
+  std::vector<std::string> overrides;  ///< --set key=value
+  int step = -1;                       ///< the step drawn in detail; −1 = the one with the most contacts
+  int levels = 8;                      ///< BVH depths drawn: 0 … levels − 1
+  std::string out;                     ///< folder for the VTK files
+  bool progress = true;
+};
+int export_command(const ExportOptions& o);
+
 struct StepOptions {
   std::string mesh_t0, mesh_t1;
   int k = 18;

@@ -86,6 +86,17 @@ int main(int argc, char** argv) {
   bench_cmd->add_flag("--json", bench.json, "print one JSON object instead of the tables");
   bench_cmd->add_flag("--no-progress", bench_no_progress, "no progress line on stderr");
 
+  ExportOptions export_opts;
+  bool export_no_progress = false;
+  auto* export_cmd = app.add_subcommand("export", "VTK files for ParaView / meshio: mesh per frame with contact counts, "
+                                        "BVH levels as k-DOP polyhedra, the BVTT front, the contacts");
+  export_cmd->add_option("config", export_opts.config, "experiment YAML file")->required();
+  export_cmd->add_option("--set", export_opts.overrides, "override a config key (repeatable)");
+  export_cmd->add_option("--step", export_opts.step, "the step drawn in detail (default: the one with the most contacts)");
+  export_cmd->add_option("--levels", export_opts.levels, "BVH depths to draw, from the root")->capture_default_str();
+  export_cmd->add_option("--out", export_opts.out, "folder for the .vtu / .pvd files")->required();
+  export_cmd->add_flag("--no-progress", export_no_progress, "no progress line on stderr");
+
   ValidateOptions validate;
   bool validate_no_progress = false;
   auto* validate_cmd = app.add_subcommand("validate", "testers against elementary query sets with known answers");
@@ -131,6 +142,10 @@ int main(int argc, char** argv) {
       return run_command(run);
     }
     if (*step_cmd) return step_command(step);
+    if (*export_cmd) {
+      export_opts.progress = !export_no_progress;
+      return export_command(export_opts);
+    }
     if (*sweep_cmd) {
       sweep.progress = !sweep_no_progress;
       return sweep_command(sweep);

@@ -67,6 +67,10 @@ class CcdPipeline {
   [[nodiscard]] const TraversalOutput& last_candidates() const { return candidates_; }
   /// BVH of body b (empty before the first step).
   [[nodiscard]] const BvhTopology& bvh(int body) const { return bodies_[body].bvh; }
+  /// The volumes of body b's BVH nodes, refit in the last step (index = node).
+  [[nodiscard]] const AnyBvs& node_bvs(int body) const { return bodies_[body].node_bvs; }
+  /// The traversal passes (self passes first, then body pairs), whose ids a stateful scheduler keys on.
+  [[nodiscard]] const std::vector<TraversalPass>& passes() const { return passes_; }
   /// Bytes of the pipeline's persistent data (topology, ownership, orphans, BVHs).
   [[nodiscard]] std::size_t memory_bytes() const;
 
