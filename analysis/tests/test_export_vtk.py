@@ -72,3 +72,21 @@ def test_export_rejects_a_step_out_of_range(tmp_path):
         capture_output=True, text=True)
     assert done.returncode == 2
     assert "--step: expected a step from 0 to 1" in done.stderr
+
+
+@pytest.mark.skipif(not CLI.exists(), reason="build/bin/ccdlab not built")
+def test_render_export_writes_the_four_pictures(tmp_path):
+    import sys
+    sys.path.insert(0, str(ROOT / "analysis"))
+    import render_export
+
+    out = tmp_path / "vtk"
+    done = subprocess.run(
+        [str(CLI), "export", str(ROOT / "experiments/configs/teaching.yaml"), "--set", "scene.resolution=8",
+         "--set", "scene.num_frames=4", "--out", str(out), "--no-progress"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert render_export.main([str(out), "--out", str(tmp_path / "png"), "--levels", "0,2", "--dpi", "40"]) == 0
+    for name in ("mesh_contacts", "bvh_levels", "front", "contacts"):
+        png = tmp_path / "png" / f"{name}.png"
+        assert png.stat().st_size > 1000 and png.read_bytes()[:4] == b"\x89PNG"
+    assert render_export.main([str(tmp_path / "missing")]) == 2
