@@ -137,8 +137,7 @@ int export_command(const ExportOptions& o) {
                .dump(2)
         << "\n";
   index.commit();
-  fmt::print("ccdlab export {} — {} ({} triangles, {} frames), rev {}\n", config.name, scene.description(),
-             mesh.num_faces(), steps + 1, build_info::git_revision);
+  fmt::print("ccdlab export {} — {}, rev {}\n", config.name, scene.description(), build_info::git_revision);
   fmt::print("step {} in detail: {} contacts, BVH depths 0..{} as {}-DOP polyhedra, front {} nodes ({} kept, {} sprouted, {} pruned)\n",
              step, detail.contacts.size(), max_depth, config.k, changes[0] + changes[1] + changes[2], changes[0],
              changes[1], changes[2]);
