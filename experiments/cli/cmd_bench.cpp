@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <thread>
 
 #include <unistd.h>
 
@@ -184,7 +185,7 @@ int bench_command(const BenchOptions& o) {
     const auto [lo, hi] = std::minmax_element(measured[i].ms_per_step.begin(), measured[i].ms_per_step.end());
     const double spread = (*hi - *lo) / median(measured[i].ms_per_step);
     measured[i].spread = spread;
-    if (spread > kNoiseThreshold)
+    if (spread > kNoiseThreshold && i < measured_configs)  // recording runs feed the simulator only
       fmt::print(stderr, "ccdlab: warning: bench: {}: rounds differ by {:.0f}% ({:.3f} to {:.3f} ms/step), above the "
                  "{:.0f}% noise threshold: other load on the machine? more --rounds?\n",
                  configs[i].name(), 100 * spread, *lo, *hi, 100 * kNoiseThreshold);
@@ -208,10 +209,12 @@ int bench_command(const BenchOptions& o) {
       jsonl(out_path("bench.jsonl"), "output.dir");
   const nlohmann::json config_json = to_json(config);
   jsonl << nlohmann::json{{"type", "config"}, {"config", config_json}, {"git_revision", rev}, {"scene", scene.description()},
-                          {"triangles", scene.topology().num_faces()}, {"steps", steps}, {"rounds", o.rounds}}
+                          {"triangles", scene.topology().num_faces()}, {"steps", steps}, {"rounds", o.rounds},
+                          {"cpu", cpu_model()}, {"hardware_threads", std::thread::hardware_concurrency()},
+                          {"compiler", build_info::compiler}}
                .dump()
         << "\n";
-  csv << "scheduler,threads,ms_per_step,ms_per_step_min,speedup,speedup_min,bv_tests_per_step,lambda,candidates_per_step,elementary_tests_per_step,"
+  csv << "scheduler,threads,ms_per_step,ms_per_step_min,ms_per_step_max,speedup,speedup_min,bv_tests_per_step,lambda,candidates_per_step,elementary_tests_per_step,"
          "traverse_ms_per_step,serial_ms_per_step,imbalance,front_nodes_max,front_bytes_max,sprouted_per_step,"
          "pruned_per_step,rebuilds,hash,git_revision\n";
   scaling << "scheduler,cores,predicted_ms_per_step,predicted_speedup,measured_ms_per_step\n";
@@ -230,15 +233,16 @@ int bench_command(const BenchOptions& o) {
     const Measured& m = measured[i];
     const double ms = median(m.ms_per_step);
     const double ms_min = *std::min_element(m.ms_per_step.begin(), m.ms_per_step.end());
+    const double ms_max = *std::max_element(m.ms_per_step.begin(), m.ms_per_step.end());
     const double lambda = seq_bv ? double(m.bv_tests) / double(seq_bv) : 0;
     const double imb = m.imbalance_n ? m.imbalance_sum / m.imbalance_n : 0;
-    csv << fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.4f},{},{},{:.4f},{:.4f},{:.4f},{},{},{},{},{},{:016x},{}\n",
-                       configs[i].label(), configs[i].threads, ms, ms_min, ref_ms / ms, ref_min / ms_min,
+    csv << fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.4f},{},{},{:.4f},{:.4f},{:.4f},{},{},{},{},{},{:016x},{}\n",
+                       configs[i].label(), configs[i].threads, ms, ms_min, ms_max, ref_ms / ms, ref_min / ms_min,
                        m.bv_tests / steps, lambda,
                        m.candidates / steps, m.elementary_tests / steps, m.traverse_ms / steps, m.serial_ms / steps, imb,
                        m.front_max, m.front_bytes_max, m.sprouted / steps, m.pruned / steps, m.rebuilds, m.hash, rev);
     nlohmann::json row = {{"scheduler", configs[i].label()}, {"threads", configs[i].threads}, {"ms_per_step", ms},
-                          {"ms_per_step_min", ms_min}, {"speedup", ref_ms / ms}, {"speedup_min", ref_min / ms_min}, {"bv_tests_per_step", m.bv_tests / steps}, {"lambda", lambda},
+                          {"ms_per_step_min", ms_min}, {"ms_per_step_max", ms_max}, {"speedup", ref_ms / ms}, {"speedup_min", ref_min / ms_min}, {"bv_tests_per_step", m.bv_tests / steps}, {"lambda", lambda},
                           {"traverse_ms_per_step", m.traverse_ms / steps}, {"serial_ms_per_step", m.serial_ms / steps},
                           {"imbalance", imb}, {"front_nodes_max", m.front_max}, {"front_bytes_max", m.front_bytes_max},
                           {"round_spread", m.spread}, {"hash", fmt::format("{:016x}", m.hash)}};

@@ -19,16 +19,6 @@ namespace ccdlab::cli {
 namespace {
 namespace fs = std::filesystem;
 
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("model name", 0) == 0) {
-      const auto colon = line.find(':');
-      if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
-    }
-  return "unknown";
-}
-
 bool complete(const SweepRun& run) { return fs::exists(fs::path(run.dir) / kRunDoneFile); }
 
 /// Nested JSON → "a.b.c" columns (lists as JSON text).

@@ -33,4 +33,7 @@ void print_table_row(std::FILE* out, const std::string& step, const StepResult& 
 /// A CSV field: as is, or quoted (doubled quotes inside) when it holds a comma, a quote or a newline.
 std::string csv_field(const std::string& s);
 
+/// The CPU's model name (/proc/cpuinfo), "unknown" elsewhere: result files say which machine measured them.
+std::string cpu_model();
+
 }  // namespace ccdlab::cli
