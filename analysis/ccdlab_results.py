@@ -40,6 +40,7 @@ class Run:
     steps: pd.DataFrame
     config: dict
     summary: dict | None
+    traversal: pd.DataFrame | None = None  # per step, from steps.jsonl: front_nodes, sprouted, pruned, rebuilds, …
 
 
 def load_run(folder: str | Path) -> Run:
@@ -59,7 +60,7 @@ def load_run(folder: str | Path) -> Run:
     for phase in OPTIONAL_PHASES:
         if phase not in steps.columns:
             steps[phase] = 0.0
-    config, summary = {}, None
+    config, summary, traversal = {}, None, []
     jsonl = folder / "steps.jsonl"
     if jsonl.is_file():
         for number, line in enumerate(jsonl.read_text().splitlines(), start=1):
@@ -73,8 +74,10 @@ def load_run(folder: str | Path) -> Run:
                 config = record
             elif record.get("type") == "summary":
                 summary = record
+            elif record.get("type") == "step" and "traversal" in record:
+                traversal.append({"step": record.get("step"), **record["traversal"]})
         if summary is None:
             # ccdlab writes results under .partial names and renames them when a run is complete; a file
             # without its summary is from an interrupted older version or was cut: never plot it as complete.
             raise ResultError(f"{jsonl}: no summary record: the run did not complete")
-    return Run(folder, steps, config, summary)
+    return Run(folder, steps, config, summary, pd.DataFrame(traversal) if traversal else None)

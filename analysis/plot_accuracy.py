@@ -96,7 +96,8 @@ def plot(summary: pd.DataFrame, out: Path) -> Path:
     fig.legend(handles, labels, fontsize=7, loc="lower center", ncol=4, frameon=False)
     fig.tight_layout(rect=(0, 0.12 if len(testers) > 4 else 0.08, 1, 1))
     path = out / "accuracy_time.png"
-    fig.savefig(path, dpi=110)
+    for ext in ("png", "pdf", "svg"):  # PNG for the docs, vector for print
+        fig.savefig(path.with_suffix(f".{ext}"), dpi=110)
     plt.close(fig)
     return path
 

@@ -23,7 +23,12 @@ def make_run(folder: Path, steps: int = 3) -> Path:
     (folder / "steps.csv").write_text("\n".join(rows) + "\n")
     config = {"type": "config", "config": {"name": "t", "bv": {"k": 18}, "scheduler": {"name": "sequential"},
                                            "threads": 1, "tester": {"name": "float"}}, "scene": "test scene"}
-    (folder / "steps.jsonl").write_text(json.dumps(config) + "\n" + json.dumps({"type": "summary", "steps": steps}) + "\n")
+    records = [json.dumps(config)]
+    for s in range(steps):
+        records.append(json.dumps({"type": "step", "step": s, "traversal": {
+            "front_nodes": 100 + 10 * s, "sprouted": 12 * s, "pruned": s, "rebuilds": int(s == 0)}}))
+    records.append(json.dumps({"type": "summary", "steps": steps}))
+    (folder / "steps.jsonl").write_text("\n".join(records) + "\n")
     return folder
 
 
@@ -42,6 +47,14 @@ def test_plots_are_written(tmp_path, capsys):
         assert png.is_file() and png.stat().st_size > 5000
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "median ms per step: total 8.60" in capsys.readouterr().out
+    for ext in ("png", "pdf", "svg"):
+        assert (folder / f"timeline.{ext}").stat().st_size > 5000
+
+
+def test_front_size_per_step_is_read_from_the_step_records(tmp_path):
+    run = load_run(make_run(tmp_path / "r", steps=3))
+    assert run.traversal.front_nodes.tolist() == [100, 110, 120]
+    assert run.traversal.rebuilds.tolist() == [1, 0, 0]
 
 
 def test_missing_folder_is_a_clear_error(tmp_path, capsys):
@@ -66,8 +79,9 @@ def test_scaling_plot_from_bench_results(tmp_path, capsys):
     folder = tmp_path / "bench"
     folder.mkdir()
     (folder / "bench.csv").write_text(
-        "scheduler,threads,ms_per_step,speedup,bv_tests_per_step,lambda\n"
-        "sequential,1,100,1,1000,1\nsequential,2,60,1.67,1000,1\nfront,1,90,1.11,600,0.6\nfront,2,46,2.17,600,0.6\n")
+        "scheduler,threads,ms_per_step,ms_per_step_min,ms_per_step_max,speedup,bv_tests_per_step,lambda\n"
+        "sequential,1,100,95,110,1,1000,1\nsequential,2,60,58,66,1.67,1000,1\nfront,1,90,88,91,1.11,600,0.6\n"
+        "front,2,46,45,50,2.17,600,0.6\n")
     rows = ["scheduler,cores,predicted_ms_per_step,predicted_speedup,measured_ms_per_step"]
     for s, base in (("sequential", 100.0), ("front", 90.0)):
         for n in (1, 2, 4, 8):
@@ -77,6 +91,8 @@ def test_scaling_plot_from_bench_results(tmp_path, capsys):
     assert plot_scaling.main([str(folder)]) == 0
     png = folder / "speedup.png"
     assert png.is_file() and png.read_bytes()[:4] == b"\x89PNG"
+    assert (folder / "speedup.pdf").read_bytes()[:4] == b"%PDF"
+    assert b"<svg" in (folder / "speedup.svg").read_bytes()[:2000]
     assert plot_scaling.main([str(tmp_path / "nothing")]) == 2
     assert "scaling.csv: not found" in capsys.readouterr().err
 
