@@ -88,3 +88,24 @@ def test_funnel_contacts_equal_the_cli(tmp_path):
         assert np.allclose(r[kind + "_coords"], np.array([w[2] for w in want[kind]]).reshape(-1, 2), rtol=0, atol=1e-15)
         assert np.allclose(r[kind + "_normal"], np.array([w[3] for w in want[kind]]).reshape(-1, 3), rtol=0, atol=1e-15)
         assert np.allclose(np.linalg.norm(r[kind + "_normal"], axis=1), 1.0)
+
+
+def test_validate_scores_like_the_cli():
+    """ccdlab.validate gives, per set and tester, the answers `ccdlab validate --json` gives (times aside)."""
+    cli = ROOT / "build" / "bin" / "ccdlab"
+    if not cli.exists():
+        pytest.skip("build/bin/ccdlab not built")
+    done = subprocess.run([str(cli), "validate", "hard-cases", "--tester", "float", "--tester", "conservative",
+                           "--json", "--no-progress", "--repeat", "1"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    import json
+    keys = ("set", "scene", "tester", "queries", "positives", "false_negatives", "false_positives", "fallbacks",
+            "toi_late")
+    expected = [{k: s[k] for k in keys} for s in json.loads(done.stdout)["scores"]]
+    rows = ccdlab.validate(["hard-cases"], testers=["float", "conservative"])
+    assert [{k: r[k] for k in keys} for r in rows] == expected
+    assert all(r["false_negatives"] == 0 for r in rows if r["tester"] == "conservative")
+    with pytest.raises(ccdlab.Error, match="tester.name: expected one of"):
+        ccdlab.validate(["hard-cases"], testers=["nope"])
+    with pytest.raises(ccdlab.Error):
+        ccdlab.validate(["/nonexistent/queries"])

@@ -66,7 +66,6 @@ int validate_command(const ValidateOptions& o) {
     for (auto& s : more) sets.push_back(std::move(s));
   }
 
-  const ExactTester exact;
   std::vector<SetScore> scores;
   // Per-query outcomes (for plots of the time distribution), written as they come when --out is given.
   OutputFile per_query;
@@ -80,11 +79,7 @@ int validate_command(const ValidateOptions& o) {
   Progress progress("validate", long(total * (testers.size() + 1)), o.progress);
   long done = 0;
   for (const QuerySet& set : sets) {
-    std::vector<ToiReference> reference(set.size());
-    for (std::size_t i = 0; i < set.size(); ++i) {
-      const auto d = set.kind == ContactKind::vf ? exact.decide(set.vf[i]) : exact.decide(set.ee[i]);
-      reference[i] = {d.hit, d.toi_lo, d.toi_hi};
-    }
+    const std::vector<ToiReference> reference = exact_reference(set);
     progress.update(done += long(set.size()));
     for (std::size_t t = 0; t < testers.size(); ++t) {
       const auto outcomes = run_tester(*testers[t], set, o.repeat);

@@ -6,6 +6,7 @@
 //   r["vf"]   (N×4 int: v, f0, f1, f2)     r["vf_toi"] (N)   r["vf_coords"] (N×2: weights of f1, f2)
 //   r["ee"]   (M×4 int: a0, a1, b0, b1)   r["ee_toi"] (M)   r["ee_coords"] (M×2: parameters on a, b)
 //   r["vf_normal"], r["ee_normal"] (unit normals at the time of contact), r["hash"], r["counters"], r["ms"]
+//   rows = ccdlab.validate(["../shared/data/ccd-queries", "hard-cases"], testers=["float", "exact"])
 //
 // Rows are sorted by feature identity, like the CLI's contacts CSV (same vertex ids, same order).
 #include <pybind11/numpy.h>
@@ -18,8 +19,11 @@
 #include "framework/config/strategy_spec.hpp"
 #include "framework/pipeline/bodies.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
+#include "framework/queries/evaluate.hpp"
+#include "framework/queries/hard_cases.hpp"
 #include "framework/util/error.hpp"
 #include "strategies/registry.hpp"
+#include "strategies/testers/exact_tester.hpp"
 
 namespace py = pybind11;
 
@@ -187,6 +191,39 @@ py::list run_frames(const std::vector<Points>& frames, const Triangles& faces, c
   return out;
 }
 
+/// `ccdlab validate` from Python: every tester over every query set, scored against the truth and the exact
+/// times; one dict per set × tester with the columns of validate.csv.
+py::list validate(const std::vector<std::string>& paths, const std::vector<std::string>& testers, int repeat) {
+  if (repeat < 1) fail("ccdlab.validate: repeat: expected an integer >= 1, got {}", repeat);
+  std::vector<std::unique_ptr<PrimitiveTester>> made;
+  for (const auto& spec : testers)
+    made.push_back(tester_registry().make(parse_strategy_spec(spec, "ccdlab.validate: testers: ", "tester", tester_registry(), "float")));
+  std::vector<QuerySet> sets;
+  for (const auto& path : paths)
+    for (auto& s : path == "hard-cases" ? hard_case_sets() : load_query_sets(path)) sets.push_back(std::move(s));
+  std::vector<SetScore> scores;
+  {
+    py::gil_scoped_release release;
+    for (const QuerySet& set : sets) {
+      const std::vector<ToiReference> reference = exact_reference(set);
+      for (std::size_t t = 0; t < made.size(); ++t)
+        scores.push_back(score(set, testers[t], run_tester(*made[t], set, repeat), reference));
+    }
+  }
+  py::list out;
+  for (const SetScore& s : scores) {
+    py::dict d;
+    d["set"] = s.set, d["scene"] = s.scene, d["collection"] = s.collection, d["tester"] = s.tester;
+    d["queries"] = s.queries, d["positives"] = s.positives;
+    d["false_negatives"] = s.false_negatives, d["false_positives"] = s.false_positives;
+    d["filtered"] = s.filtered, d["fallbacks"] = s.fallbacks;
+    d["mean_us"] = s.mean_us, d["median_us"] = s.median_us, d["p99_us"] = s.p99_us, d["max_us"] = s.max_us;
+    d["toi_max_error"] = s.toi_max_error, d["toi_mean_error"] = s.toi_mean_error, d["toi_late"] = s.toi_late;
+    out.append(d);
+  }
+  return out;
+}
+
 }  // namespace
 }  // namespace ccdlab
 
@@ -207,6 +244,12 @@ PYBIND11_MODULE(ccdlab, m) {
       "(v, f0, f1, f2) and ee (a0, a1, b0, b1) vertex ids, their toi, coords and normal, hash, counters, ms.");
   m.def("sequence", &run_frames, py::arg("frames"), py::arg("faces"),
         "CCD over consecutive frames (a list of N×3 arrays) of one mesh: a list of step dicts (as step()).");
+  m.def("validate", &validate, py::arg("paths"), py::arg("testers") = std::vector<std::string>{"float", "filtered", "conservative", "exact"},
+        py::arg("repeat") = 1,
+        "Testers (names or 'name:key=value,…') over elementary query sets with known answers — CSV files or folders "
+        "of the shared format, or 'hard-cases' — as `ccdlab validate`: a list of dicts, one per set and tester "
+        "(set, scene, collection, tester, queries, positives, false_negatives, false_positives, filtered, "
+        "fallbacks, mean/median/p99/max_us, toi_max_error, toi_mean_error, toi_late).");
   m.def("schedulers", [] { return scheduler_registry().names(); }, "the registered traversal schedulers");
   m.def("testers", [] { return tester_registry().names(); }, "the registered elementary testers");
 }

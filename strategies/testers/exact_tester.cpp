@@ -244,4 +244,14 @@ CcdHit as_hit(const ExactTester::Decision& d, const Query& q) {
 CcdHit ExactTester::vertex_face(const VertexFaceQuery& q) const { return as_hit(decide(q), q); }
 CcdHit ExactTester::edge_edge(const EdgeEdgeQuery& q) const { return as_hit(decide(q), q); }
 
+std::vector<ToiReference> exact_reference(const QuerySet& set) {
+  const ExactTester exact;
+  std::vector<ToiReference> reference(set.size());
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    const auto d = set.kind == ContactKind::vf ? exact.decide(set.vf[i]) : exact.decide(set.ee[i]);
+    reference[i] = {d.hit, d.toi_lo, d.toi_hi};
+  }
+  return reference;
+}
+
 }  // namespace ccdlab

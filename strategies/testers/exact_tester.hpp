@@ -26,6 +26,7 @@
 // When every window is separated: no contact, proven. Only an `unknown` window (a grazing or degenerate
 // contact) or coplanar motion (too many windows) goes on to the algebra.
 #include "framework/primitive/tester.hpp"
+#include "framework/queries/evaluate.hpp"
 
 namespace ccdlab {
 
@@ -57,5 +58,9 @@ class ExactTester final : public PrimitiveTester {
  private:
   Params params_{};
 };
+
+/// The exact answer to every query of a set (hit, and the interval holding its time of contact): the reference
+/// `ccdlab validate` and `ccdlab.validate` score every tester against.
+std::vector<ToiReference> exact_reference(const QuerySet& set);
 
 }  // namespace ccdlab
