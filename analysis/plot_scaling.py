@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import sys
 from pathlib import Path
 
@@ -64,7 +65,8 @@ def title_of(header: dict) -> str:
     k = config.get("bv", {}).get("k", "?")
     tester = config.get("tester", {})
     tester = tester.get("name", tester) if isinstance(tester, dict) else tester
-    return (f"{header.get('scene', '?')}\n{header.get('triangles', '?'):,} triangles, K={k}, tester {tester}, "
+    scene = re.sub(r"\S*/", "", str(header.get("scene", "?")))  # file names without their folders
+    return (f"{scene}\n{header.get('triangles', '?'):,} triangles, K={k}, tester {tester}, "
             f"{header.get('rounds', '?')} rounds, rev {header.get('git_revision', '?')}"
             if isinstance(header.get("triangles"), int) else "ccdlab bench")
 

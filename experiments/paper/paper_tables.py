@@ -59,7 +59,10 @@ PAPER_TABLE2 = {  # proposed (8 cores), PHC (8 cores), ICCD (1 core), ms per fra
 }
 
 
-def bench(cli: Path, config: str, k: int, out: Path, rounds: int, full: bool, extra: list[str]) -> Path:
+def bench(cli: Path, config: str, k: int, out: Path, rounds: int, full: bool, extra: list[str], reuse: bool) -> Path:
+    if reuse and (out / "bench.csv").is_file() and (out / "scaling.csv").is_file():
+        print(f"  k={k:<2} reused {out}", file=sys.stderr)
+        return out
     schedulers = "sequential,phc,front,static" if full else "sequential,front"
     cores = "1,2,4,8,16,32,64" if full else "1,2,8"
     out.mkdir(parents=True, exist_ok=True)
@@ -73,6 +76,39 @@ def bench(cli: Path, config: str, k: int, out: Path, rounds: int, full: bool, ex
         raise RuntimeError(f"{' '.join(cmd)} failed ({done.returncode}):\n{done.stderr[-2000:]}")
     print(f"  k={k:<2} {schedulers:<28} {time.time() - t0:6.1f} s", file=sys.stderr)
     return out
+
+
+def run_timeline(cli: Path, config: str, out: Path, extra: list[str], reuse: bool) -> Path:
+    """One `ccdlab run` with the front scheduler (2 threads): the per-step timeline figure."""
+    if reuse and (out / "steps.csv").is_file():
+        return out
+    cmd = [str(cli), "run", str(ROOT / config), "--set", "scheduler=front", "--set", "threads=2", "--set",
+           f"output.dir={out}", "--json", "--no-progress", *extra]
+    done = subprocess.run(cmd, capture_output=True, text=True)
+    if done.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed ({done.returncode}):\n{done.stderr[-2000:]}")
+    return out
+
+
+def simulator_check(results: dict[str, dict[int, Path]]) -> pd.DataFrame:
+    """Per scene and scheduler (K = 18): simulated against measured ms/step on 1 and 2 threads, and the serial
+    fraction of an Amdahl fit of the simulated curve."""
+    rows = []
+    for scene, by_k in results.items():
+        b, s, _ = load(by_k[18])
+        for sched, curve in s.groupby("scheduler", sort=False):
+            curve = curve.sort_values("cores")
+            own = curve.predicted_speedup.to_numpy(float)
+            entry = {"scene": scene, "scheduler": sched,
+                     "serial_fraction": plot_scaling.amdahl_fraction(curve.cores.to_numpy(float), own / own[0])}
+            for n in (1, 2):
+                hit = curve[curve.cores == n]
+                measured = b[(b.scheduler == sched) & (b.threads == n)]
+                if len(hit) and len(measured):
+                    entry[f"sim_{n}"] = float(hit.predicted_ms_per_step.iloc[0])
+                    entry[f"measured_{n}"] = float(measured.ms_per_step.iloc[0])
+            rows.append(entry)
+    return pd.DataFrame(rows)
 
 
 def load(folder: Path) -> tuple[pd.DataFrame, pd.DataFrame, dict]:
@@ -124,7 +160,7 @@ def fmt_ms(v: float) -> str:
 
 
 def markdown(t1: pd.DataFrame, t2: pd.DataFrame, header: dict, skipped: list[str], command: str,
-             scene_notes: dict[str, str], figures: dict[str, str]) -> str:
+             scene_notes: dict[str, str], figures: dict[str, str], check: pd.DataFrame | None = None) -> str:
     rev = header["git_revision"]
     lines = [
         "# Results: the paper's tables on our scenes",
@@ -191,6 +227,20 @@ def markdown(t1: pd.DataFrame, t2: pd.DataFrame, header: dict, skipped: list[str
             cells = [f"{fmt_ms(r[f'{s}_{threads}_ms'])} [{fmt_ms(r[f'{s}_{threads}_ms_min'])}–{fmt_ms(r[f'{s}_{threads}_ms_max'])}]"
                      for s in ("sequential", "phc", "front", "static")]
             lines.append(f"| {r.scene} | {threads} | " + " | ".join(cells) + " |")
+    if check is not None and len(check):
+        lines += ["", "## The simulator against measured runs (K = 18)", "",
+                  "Simulated ms/step (replayed task costs) against the measured median on the cores this machine has; "
+                  "f is the serial fraction of an Amdahl fit S(n) = 1 / (f + (1 − f)/n) to the simulated curve "
+                  "(1 … 64 cores).", "",
+                  "| scene | scheduler | 1 thread: simulated / measured | 2 threads: simulated / measured | Amdahl f |",
+                  "|---|---|---|---|---|"]
+        for _, r in check.iterrows():
+            cells = []
+            for n in (1, 2):
+                sim, meas = r.get(f"sim_{n}"), r.get(f"measured_{n}")
+                cells.append(f"{fmt_ms(sim)} / {fmt_ms(meas)} ({100 * (sim - meas) / meas:+.0f}%)"
+                             if pd.notna(sim) and pd.notna(meas) else "–")
+            lines.append(f"| {r.scene} | {r.scheduler} | {cells[0]} | {cells[1]} | {r.serial_fraction:.3f} |")
     lines += ["", "## Figures", ""]
     for caption, path in figures.items():
         lines += [f"![{caption}]({path})", "", f"*{caption}*", ""]
@@ -205,6 +255,8 @@ def main(argv=None) -> int:
     parser.add_argument("--out", default="results/paper")
     parser.add_argument("--doc", help="write this Markdown page (e.g. docs/results.md) and its figures beside it")
     parser.add_argument("--cli", default=str(ROOT / "build/bin/ccdlab"))
+    parser.add_argument("--reuse", action="store_true",
+                        help="reuse bench folders already in --out (from the same build) instead of running them again")
     args = parser.parse_args(argv)
     cli = Path(args.cli)
     if not cli.exists():
@@ -225,6 +277,7 @@ def main(argv=None) -> int:
     rounds = 1 if args.quick else args.rounds
     quick = ["--set", "scene.resolution=24", "--set", "scene.num_frames=4"] if args.quick else []
     results: dict[str, dict[int, Path]] = {}
+    timeline_runs: dict[str, Path] = {}
     skipped, notes = [], {}
     for name, config, note, needs in SCENES:
         if name not in wanted:
@@ -238,7 +291,9 @@ def main(argv=None) -> int:
         print(f"{name}: {note}", file=sys.stderr)
         notes[name] = note + (" (--quick: resolution 24, 4 frames)" if args.quick and not needs else "")
         extra = quick if not needs else []
-        results[name] = {k: bench(cli, config, k, out / name / f"k{k}", rounds, k == 18, extra) for k in KS}
+        results[name] = {k: bench(cli, config, k, out / name / f"k{k}", rounds, k == 18, extra, args.reuse) for k in KS}
+        if name == "drape":
+            timeline_runs[name] = run_timeline(cli, config, out / name / "front_run", extra, args.reuse)
     if not results:
         print("paper_tables: error: no scene to run", file=sys.stderr)
         return 2
@@ -261,10 +316,20 @@ def main(argv=None) -> int:
     for path, caption in ((plot_tables.plot_by_k(t1, fig_dir, revision), "ms per step by K: ICCD and proposed ×2"),
                           (plot_tables.plot_by_scheduler(t2, fig_dir, revision), "ms per step by scheduler, K = 18")):
         figures[caption] = path
+    for scene, folder in timeline_runs.items():
+        import plot_run
+        from ccdlab_results import load_run
+        paths = plot_run.plot_timeline(load_run(folder), fig_dir)
+        stem = fig_dir / f"timeline_{scene}"
+        for p in paths:
+            p.rename(stem.with_suffix(p.suffix))
+        figures[f"{scene}: per step — time per phase, BVTT front, contacts (front ×2)"] = stem.with_suffix(".png")
+    check = simulator_check(results)
+    check.to_csv(out / "simulator_check.csv", index=False)
     relative = {c: (Path(p).relative_to(Path(args.doc).parent).as_posix() if args.doc else str(p))
                 for c, p in figures.items()}
     command = "experiments/paper/run.sh" + (f" --rounds {args.rounds}" if args.rounds != 3 else "")
-    page = markdown(t1, t2, header, skipped, command, notes, relative)
+    page = markdown(t1, t2, header, skipped, command, notes, relative, check)
     target = Path(args.doc) if args.doc else out / "results.md"
     target.write_text(page)
     print(page)
