@@ -2,6 +2,7 @@
 
 #include "strategies/builders/median_builder.hpp"
 #include "strategies/builders/sah_builder.hpp"
+#include "strategies/effects/effects.hpp"
 #include "strategies/scenes/drape_fold_scene.hpp"
 #include "strategies/schedulers/front_scheduler.hpp"
 #include "strategies/schedulers/phc_scheduler.hpp"
@@ -94,6 +95,65 @@ const TesterRegistry& tester_registry() {
     return r;
   }();
   return r;
+}
+
+const EffectRegistry& effect_registry() {
+  static const EffectRegistry r = [] {
+    EffectRegistry r("effect");
+    using P = ParamType;
+    r.add({"gravity", "constant acceleration of every free vertex",
+           {{"gx", P::real, 0.0, "m/s^2", -1e3, 1e3}, {"gy", P::real, -9.81, "m/s^2", -1e3, 1e3}, {"gz", P::real, 0.0, "m/s^2", -1e3, 1e3}},
+           make_gravity});
+    r.add({"damping", "velocities decay as exp(-rate t)", {{"rate", P::real, 0.5, "1/s", 0, 1e6}}, make_damping});
+    r.add({"wind", "drag towards a wind velocity on each triangle's normal, with seeded gusts",
+           {{"vx", P::real, 3.0, "m/s", -1e3, 1e3}, {"vy", P::real, 0.0, "m/s", -1e3, 1e3}, {"vz", P::real, 0.0, "m/s", -1e3, 1e3},
+            {"drag", P::real, 1.0, "drag coefficient (per unit area and mass)", 0, 1e6},
+            {"turbulence", P::real, 0.3, "gust amplitude relative to the wind speed", 0, 10}},
+           make_wind});
+    r.add({"stretch", "XPBD distance constraints on every cloth edge (stretch and shear)",
+           {{"compliance", P::real, 1e-8, "inverse stiffness, m/N (0 = inextensible)", 0, 1}}, make_stretch});
+    r.add({"bend", "XPBD distance constraints across every interior edge",
+           {{"compliance", P::real, 1e-5, "inverse stiffness, m/N", 0, 1}}, make_bend});
+    r.add({"pin", "fixes (or moves as a scripted handle) the cloth vertices whose rest position is in a box",
+           {{"min_x", P::real, -1e9, "box, rest coordinates", -1e9, 1e9}, {"min_y", P::real, -1e9, "", -1e9, 1e9},
+            {"min_z", P::real, -1e9, "", -1e9, 1e9}, {"max_x", P::real, 1e9, "", -1e9, 1e9},
+            {"max_y", P::real, 1e9, "", -1e9, 1e9}, {"max_z", P::real, 1e9, "", -1e9, 1e9},
+            {"vx", P::real, 0.0, "handle velocity, m/s", -1e3, 1e3}, {"vy", P::real, 0.0, "", -1e3, 1e3},
+            {"vz", P::real, 0.0, "", -1e3, 1e3}, {"move_start", P::real, 0.0, "s", 0, 1e9},
+            {"move_end", P::real, 1e9, "s", 0, 1e9}},
+           make_pin});
+    r.add({"obstacle_contact", "pushes cloth out of sphere and capsule obstacles (exact shapes), with friction",
+           {{"friction", P::real, 0.3, "Coulomb coefficient", 0, 10}}, make_obstacle_contact});
+    r.add({"ccd_contact", "crossing-free sub-steps: ccdlab's CCD, impulses, and a stop-where-you-were fail-safe",
+           {{"self", P::boolean, true, "self-contact of the cloth (false: cloth-obstacle only; no self pass runs)", 0, 0},
+            {"iterations", P::integer, 4LL, "impulse rounds before the fail-safe", 1, 1000},
+            {"k", P::integer, 18LL, "k-DOP of the CCD's BVH", 6, 26},
+            {"scheduler", P::string, std::string("phc"), "the CCD's traversal scheduler", 0, 0,
+             {"sequential", "phc", "front", "static"}}},
+           make_ccd_contact});
+    return r;
+  }();
+  return r;
+}
+
+PipelineStrategies contact_strategies(int k, const std::string& scheduler, int threads, double thickness) {
+  PipelineStrategies s;
+  s.k = k;
+  s.threads = threads;
+  s.builder = builder_registry().make({"median", builder_registry().find("median")->defaults()});
+  s.scheduler = scheduler_registry().make({scheduler, scheduler_registry().find(scheduler)->defaults()});
+  ParamValues tester = tester_registry().find("float")->defaults();
+  tester.set("thickness", thickness);
+  s.tester = tester_registry().make({"float", tester});
+  return s;
+}
+
+Simulator make_simulator(const SimScene& scene, const TriMesh& mesh) {
+  SimSetup setup = scene.setup;
+  setup.mesh = &mesh;
+  std::vector<std::unique_ptr<Effect>> effects;
+  for (const StrategyChoice& c : scene.effects) effects.push_back(effect_registry().make(c));
+  return Simulator(std::move(setup), std::move(effects), scene.options);
 }
 
 const SceneRegistry& scene_registry() {

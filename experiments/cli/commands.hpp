@@ -34,6 +34,17 @@ struct SweepOptions {
 };
 int sweep_command(const SweepOptions& o);
 
+struct SimulateOptions {
+  std::string scene;                   ///< experiments/scenes/<name>.yaml
+  std::vector<std::string> overrides;  ///< --set key=value (frames=8, resolution=0.1, threads=2 …)
+  std::string out;                     ///< default results/scenes/<name>-<scene hash>
+  bool force = false;                  ///< simulate even when the folder holds this scene's frames
+  bool progress = true;
+};
+int simulate_command(const SimulateOptions& o);
+/// Simulates (or finds cached) frames of a scene; returns the folder. `print`: the per-frame table on stdout.
+std::string simulate_scene(const SimulateOptions& o, bool print);
+
 struct ExportOptions {
   std::string config;
   std::vector<std::string> overrides;  ///< --set key=value

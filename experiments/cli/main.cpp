@@ -86,6 +86,15 @@ int main(int argc, char** argv) {
   bench_cmd->add_flag("--json", bench.json, "print one JSON object instead of the tables");
   bench_cmd->add_flag("--no-progress", bench_no_progress, "no progress line on stderr");
 
+  SimulateOptions simulate;
+  bool simulate_no_progress = false;
+  auto* simulate_cmd = app.add_subcommand("simulate", "simulate a scene with only the effects it lists; frames as PLY + meta.json");
+  simulate_cmd->add_option("scene", simulate.scene, "scene YAML file (experiments/scenes/)")->required();
+  simulate_cmd->add_option("--set", simulate.overrides, "override a scene key: frames=8, resolution=0.1, threads=2 (repeatable)");
+  simulate_cmd->add_option("--out", simulate.out, "folder for the frames (default: results/scenes/NAME-HASH)");
+  simulate_cmd->add_flag("--force", simulate.force, "simulate even when the folder holds this scene's frames");
+  simulate_cmd->add_flag("--no-progress", simulate_no_progress, "no progress line on stderr");
+
   ExportOptions export_opts;
   bool export_no_progress = false;
   auto* export_cmd = app.add_subcommand("export", "VTK files for ParaView / meshio: mesh per frame with contact counts, "
@@ -142,6 +151,10 @@ int main(int argc, char** argv) {
       return run_command(run);
     }
     if (*step_cmd) return step_command(step);
+    if (*simulate_cmd) {
+      simulate.progress = !simulate_no_progress;
+      return simulate_command(simulate);
+    }
     if (*export_cmd) {
       export_opts.progress = !export_no_progress;
       return export_command(export_opts);
