@@ -120,7 +120,8 @@ const EffectRegistry& effect_registry() {
             {"max_y", P::real, 1e9, "", -1e9, 1e9}, {"max_z", P::real, 1e9, "", -1e9, 1e9},
             {"vx", P::real, 0.0, "handle velocity, m/s", -1e3, 1e3}, {"vy", P::real, 0.0, "", -1e3, 1e3},
             {"vz", P::real, 0.0, "", -1e3, 1e3}, {"move_start", P::real, 0.0, "s", 0, 1e9},
-            {"move_end", P::real, 1e9, "s", 0, 1e9}},
+            {"move_end", P::real, 1e9, "s", 0, 1e9},
+            {"follow", P::string, std::string(), "move rigidly with this obstacle (a waistband on a body)", 0, 0}},
            make_pin});
     r.add({"obstacle_contact", "pushes cloth out of sphere and capsule obstacles (exact shapes), with friction",
            {{"friction", P::real, 0.3, "Coulomb coefficient", 0, 10}}, make_obstacle_contact});

@@ -47,6 +47,8 @@ struct SimSetup {
   int threads = 1;
   std::uint64_t seed = 1;         ///< for effects with randomness (wind turbulence): same seed, same frames
   std::vector<SimObstacle> obstacles;
+  /// Per vertex: the obstacle whose rigid motion moves it (its own vertices, and cloth pinned to it), or −1.
+  std::vector<int> follows;
   /// Per vertex: 1 when it belongs to a cloth body.
   [[nodiscard]] std::vector<char> cloth_mask() const {
     std::vector<char> mask(rest.size(), 0);

@@ -191,6 +191,11 @@ SimScene load_checked(const std::string& path, const std::vector<std::string>& o
     effect_json.push_back(j);
   }
   s.setup.rest = s.mesh.positions;
+  s.setup.follows.assign(s.mesh.positions.size(), -1);
+  for (std::size_t o = 0; o < s.setup.obstacles.size(); ++o) {
+    const Body& b = s.setup.bodies[std::size_t(s.setup.obstacles[o].body)];
+    std::fill(s.setup.follows.begin() + b.vertex_begin, s.setup.follows.begin() + b.vertex_end, int(o));
+  }
   s.setup.inv_mass.assign(s.mesh.positions.size(), 0.0);
   for (const Body& b : s.setup.bodies)
     if (b.kind == BodyKind::cloth)

@@ -7,9 +7,9 @@
 //   Fedkiw & Anderson 2002, velocity filtering); positions p = x + dt·v are updated and the CCD runs again,
 //   until no contact needs an impulse.
 // Then the fail-safe: the motion runs through a second pipeline with zero thickness — any contact there is a
-// true touch or crossing — and the free vertices of each stop where they were at t (against the cloth) or
-// move rigidly with the obstacle they touch (against an obstacle), until none is left. The frame at t was free
-// of crossings, so both are safe for that pair; what is left after 8 rounds is counted (`unresolved`), never
+// true touch or crossing — and the free vertices of each stop where they were at t (against free cloth), move
+// rigidly with the obstacle they touch, or move with the pinned vertices they touch, until none is left. The frame at t was free
+// of crossings, so both are safe for that pair; what is left after 16 rounds is counted (`unresolved`), never
 // hidden.
 #include <algorithm>
 
@@ -41,11 +41,6 @@ class CcdContact final : public Effect {
       s.restructure_threshold = 2.0;  // cloth deforms far from its rest shape: rebuild sub-trees that degrade
       return std::make_unique<CcdPipeline>(*setup.mesh, bodies, std::move(s));
     };
-    obstacle_of_.assign(setup.rest.size(), -1);
-    for (std::size_t o = 0; o < setup.obstacles.size(); ++o) {
-      const Body& b = setup.bodies[std::size_t(setup.obstacles[o].body)];
-      for (Index v = b.vertex_begin; v < b.vertex_end; ++v) obstacle_of_[std::size_t(v)] = int(o);
-    }
     pipeline_ = make(setup.thickness);
     crossing_ = make(0);
   }
@@ -66,17 +61,28 @@ class CcdContact final : public Effect {
     // are carried by the obstacle's own motion over the sub-step (stopping cannot help against a moving
     // obstacle). Until none is left.
     std::size_t left = 0;
-    for (int round = 0; round < 8; ++round) {
+    for (int round = 0; round < kFailSafeRounds; ++round) {
       const StepResult r = detect(s, *crossing_);
       left = r.contacts.size();
       if (left == 0) break;
       for (const Contact& c : r.contacts) {
-        int obstacle = -1;
-        for (Index v : c.vertices)
-          if (setup.inv_mass[std::size_t(v)] == 0 && obstacle_of_[std::size_t(v)] >= 0) obstacle = obstacle_of_[std::size_t(v)];
-        const Eigen::Isometry3d carry = obstacle >= 0 ? Eigen::Isometry3d(setup.obstacles[std::size_t(obstacle)].motion.at(s.time + dt) *
-                                                                           setup.obstacles[std::size_t(obstacle)].motion.at(s.time).inverse())
-                                                      : Eigen::Isometry3d::Identity();
+        // What the free vertices of the contact must follow: an obstacle's rigid motion, else the mean
+        // displacement of the contact's scripted vertices (pins, handles), else nothing (they stop).
+        int obstacle = -1, scripted = 0;
+        Vec3 shift = Vec3::Zero();
+        for (Index v : c.vertices) {
+          const auto i = std::size_t(v);
+          if (setup.inv_mass[i] > 0) continue;
+          if (i < setup.follows.size() && setup.follows[i] >= 0) obstacle = setup.follows[i];
+          shift += s.p[i] - s.x[i], ++scripted;
+        }
+        Eigen::Isometry3d carry = Eigen::Isometry3d::Identity();
+        if (obstacle >= 0) {
+          const RigidMotion& m = setup.obstacles[std::size_t(obstacle)].motion;
+          carry = m.at(s.time + dt) * m.at(s.time).inverse();
+        } else if (scripted > 0) {
+          carry.translate(shift / scripted);
+        }
         for (Index v : c.vertices) {
           const auto i = std::size_t(v);
           if (setup.inv_mass[i] == 0) continue;
@@ -125,10 +131,10 @@ class CcdContact final : public Effect {
     return 1;
   }
 
+  static constexpr int kFailSafeRounds = 16;
   Params p_;
   std::unique_ptr<CcdPipeline> pipeline_;  ///< thickness-inflated: contacts to respond to
   std::unique_ptr<CcdPipeline> crossing_;  ///< zero thickness: true touches and crossings (the fail-safe)
-  std::vector<int> obstacle_of_;  ///< per vertex: the obstacle it belongs to, or −1
   std::uint64_t unresolved_ = 0;   ///< contacts left after the fail-safe, summed over sub-steps
   std::uint64_t stopped_ = 0, ccd_steps_ = 0, self_passes_ = 0, obstacle_passes_ = 0;
   /// One CCD step x → p, counting the passes it ran (the proof that a scene without self-contact runs none).
