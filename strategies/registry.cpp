@@ -4,6 +4,7 @@
 #include "strategies/builders/sah_builder.hpp"
 #include "strategies/effects/effects.hpp"
 #include "strategies/scenes/drape_fold_scene.hpp"
+#include "strategies/scenes/simulated_scene.hpp"
 #include "strategies/schedulers/front_scheduler.hpp"
 #include "strategies/schedulers/phc_scheduler.hpp"
 #include "strategies/schedulers/embree_scheduler.hpp"
@@ -189,6 +190,20 @@ const SceneRegistry& scene_registry() {
            [](const ParamValues& p) {
              const std::uint64_t n = std::uint64_t(p.integer("resolution")), s = std::uint64_t(p.integer("sphere_segments"));
              return 2 * n * n + (p.real("sphere_radius") > 0 ? s * s : 0);  // sheet + sphere (s longitudes × s/2 latitudes × 2)
+           }});
+    r.add({"simulated", "a scene of the simulator (experiments/scenes/*.yaml), simulated once and cached by its hash",
+           {{"file", ParamType::string, std::string(), "the scene file (relative to the working directory)", 0, 0},
+            {"num_frames", ParamType::integer, 0LL, "frames to simulate (0 = the scene's own)", 0, 1000000},
+            {"resolution", ParamType::real, 0.0, "size factor (0 = the scene's own; 1 = full size)", 0, 100},
+            {"threads", ParamType::integer, 0LL, "simulation threads (0 = the scene's own; frames do not depend on it)", 0, 1024},
+            {"dir", ParamType::string, std::string(), "folder of the frames (empty = results/scenes/NAME-HASH)", 0, 0}},
+           [](const ParamValues& p) {
+             if (p.string("file").empty()) fail("scene: builtin: simulated needs file: experiments/scenes/NAME.yaml");
+             SimulateRequest request{p.string("file"), {}, p.string("dir"), false, true};
+             if (p.integer("num_frames") > 0) request.overrides.push_back(fmt::format("frames={}", p.integer("num_frames")));
+             if (p.real("resolution") > 0) request.overrides.push_back(fmt::format("resolution={}", p.real("resolution")));
+             if (p.integer("threads") > 0) request.overrides.push_back(fmt::format("threads={}", p.integer("threads")));
+             return load_simulated_frames(simulate_to_folder(request, false));
            }});
     return r;
   }();

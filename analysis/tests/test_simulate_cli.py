@@ -60,3 +60,25 @@ def test_simulate_errors_are_located(tmp_path):
                    "effects:\n  - {name: gravty}\n")
     done = subprocess.run([str(CLI), "simulate", str(bad), "--out", str(tmp_path / "y")], capture_output=True, text=True)
     assert done.returncode == 2 and "bad.yaml:7" in done.stderr and "gravity" in done.stderr
+
+
+@pytest.mark.skipif(not CLI.exists(), reason="build/bin/ccdlab not built")
+def test_an_experiment_names_a_simulated_scene(tmp_path):
+    """`scene: {builtin: simulated, file: …}` simulates once (cached) and runs CCD on the frames with the scene's
+    bodies; the answer does not depend on the threads of either."""
+    config = tmp_path / "exp.yaml"
+    config.write_text(f"name: sim\nscene: {{builtin: simulated, file: {SCENE}, num_frames: 4, resolution: 0.01}}\n"
+                      f"output: {{dir: {tmp_path / 'out'}}}\n")
+    hashes = set()
+    for threads in ("1", "2"):
+        done = subprocess.run([str(CLI), "run", str(config), "--json", "--no-progress", "--set", f"threads={threads}",
+                               "--set", f"scene.threads={threads}"], capture_output=True, text=True, cwd=tmp_path)
+        assert done.returncode == 0, done.stderr
+        summary = json.loads(done.stdout)
+        assert summary["steps"] == 3
+        hashes.add(summary["hash"])
+    assert len(hashes) == 1
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("scene: {builtin: simulated}\n")
+    done = subprocess.run([str(CLI), "run", str(bad), "--no-progress"], capture_output=True, text=True)
+    assert done.returncode == 2 and "needs file" in done.stderr

@@ -42,8 +42,6 @@ struct SimulateOptions {
   bool progress = true;
 };
 int simulate_command(const SimulateOptions& o);
-/// Simulates (or finds cached) frames of a scene; returns the folder. `print`: the per-frame table on stdout.
-std::string simulate_scene(const SimulateOptions& o, bool print);
 
 struct ExportOptions {
   std::string config;
