@@ -46,6 +46,9 @@ def test_simulate_writes_frames_meta_and_caches(tmp_path):
     assert forced.returncode == 0 and "cached" not in forced.stdout
 
     sys.path.insert(0, str(ROOT / "analysis"))
+    import sim_table
+    table = sim_table.markdown([sim_table.summary(out, 1)], 1)
+    assert "| cloth_ball |" in table and "| ccd_contact |" in table and "contacts resolved" in table
     import render_scene
     assert render_scene.main([str(out), "--frames", "0,5", "--out", str(tmp_path / "f.png"), "--dpi", "40"]) == 0
     assert (tmp_path / "f.png").read_bytes()[:4] == b"\x89PNG"

@@ -4,34 +4,19 @@
 #include <cmath>
 #include <limits>
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/intersections.h>
+
 #include "framework/geometry/distance.hpp"
 
 namespace ccdlab {
-namespace {
-
-double orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return (b - a).cross(c - a).dot(d - a); }
-
-/// Segment p–q against triangle a b c (not coplanar): crosses or touches it.
-bool segment_hits_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double sp = orient(a, b, c, p), sq = orient(a, b, c, q);
-  if ((sp > 0 && sq > 0) || (sp < 0 && sq < 0) || (sp == 0 && sq == 0)) return false;
-  const double u = orient(p, q, a, b), v = orient(p, q, b, c), w = orient(p, q, c, a);
-  return (u >= 0 && v >= 0 && w >= 0) || (u <= 0 && v <= 0 && w <= 0);
-}
-
-}  // namespace
 
 bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1, const Vec3& b2) {
-  const std::array<Vec3, 3> a{a0, a1, a2}, b{b0, b1, b2};
-  for (int i = 0; i < 3; ++i) {
-    if (segment_hits_triangle(a[i], a[(i + 1) % 3], b0, b1, b2)) return true;
-    if (segment_hits_triangle(b[i], b[(i + 1) % 3], a0, a1, a2)) return true;
-  }
-  // Coplanar triangles: the segment test does not see them; they overlap when they are at distance zero.
-  const Vec3 n = (a1 - a0).cross(a2 - a0);
-  if (std::abs(n.dot(b0 - a0)) + std::abs(n.dot(b1 - a0)) + std::abs(n.dot(b2 - a0)) == 0)
-    return triangle_distance(a0, a1, a2, b0, b1, b2) == 0;
-  return false;
+  // Exact predicates (CGAL's filtered kernel): cloth strips are often exactly coplanar (a cone's triangles
+  // between two rulings lie in one plane), where floating-point orientation signs are noise.
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  auto p = [](const Vec3& v) { return K::Point_3(v.x(), v.y(), v.z()); };
+  return CGAL::do_intersect(K::Triangle_3(p(a0), p(a1), p(a2)), K::Triangle_3(p(b0), p(b1), p(b2)));
 }
 
 double triangle_distance(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1, const Vec3& b2) {

@@ -10,8 +10,8 @@
 
 namespace ccdlab {
 
-/// Whether two triangles intersect (share a point), for triangles with no common vertex. Non-coplanar
-/// triangles intersect when an edge of one crosses the other; coplanar overlaps are counted too.
+/// Whether two triangles intersect (share a point), decided exactly (CGAL's exact predicates); for triangles
+/// with no common vertex. Coplanar overlaps count too.
 bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1, const Vec3& b2);
 
 /// Smallest distance between two triangles (the 6 vertex–face and 9 edge–edge distances).

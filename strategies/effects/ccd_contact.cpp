@@ -8,9 +8,10 @@
 //   until no contact needs an impulse.
 // Then the fail-safe: the motion runs through a second pipeline with zero thickness — any contact there is a
 // true touch or crossing — and the free vertices of each stop where they were at t (against free cloth), move
-// rigidly with the obstacle they touch, or move with the pinned vertices they touch, until none is left. The frame at t was free
-// of crossings, so both are safe for that pair; what is left after 16 rounds is counted (`unresolved`), never
-// hidden.
+// rigidly with the obstacle they touch, or move with the pinned vertices they touch, until none is left; when
+// contacts keep cascading (half the rounds), the whole free cloth stops for the sub-step (`global_stops`). The
+// frame at t was free of crossings, so all of these are safe; what is left after 16 rounds is counted
+// (`unresolved`), never hidden.
 #include <algorithm>
 
 #include "framework/pipeline/ccd_pipeline.hpp"
@@ -65,6 +66,14 @@ class CcdContact final : public Effect {
       const StepResult r = detect(s, *crossing_);
       left = r.contacts.size();
       if (left == 0) break;
+      if (round == kFailSafeRounds / 2) {
+        // Contacts keep cascading (heavy gathering): the whole free cloth stops for this sub-step; only what
+        // scripted motion carries still moves, and the rounds below resolve contacts against it.
+        for (std::size_t i = 0; i < s.p.size(); ++i)
+          if (setup.inv_mass[i] > 0) s.p[i] = s.x[i], s.v[i] = Vec3::Zero();
+        ++global_stops_;
+        continue;
+      }
       for (const Contact& c : r.contacts) {
         // What the free vertices of the contact must follow: an obstacle's rigid motion, else the mean
         // displacement of the contact's scripted vertices (pins, handles), else nothing (they stop).
@@ -98,7 +107,7 @@ class CcdContact final : public Effect {
 
   [[nodiscard]] nlohmann::json stats() const override {
     return {{"ccd_steps", ccd_steps_}, {"self_passes", self_passes_}, {"obstacle_passes", obstacle_passes_},
-            {"failsafe_contacts", stopped_}, {"unresolved", unresolved_}};
+            {"failsafe_contacts", stopped_}, {"global_stops", global_stops_}, {"unresolved", unresolved_}};
   }
 
  private:
@@ -136,7 +145,7 @@ class CcdContact final : public Effect {
   std::unique_ptr<CcdPipeline> pipeline_;  ///< thickness-inflated: contacts to respond to
   std::unique_ptr<CcdPipeline> crossing_;  ///< zero thickness: true touches and crossings (the fail-safe)
   std::uint64_t unresolved_ = 0;   ///< contacts left after the fail-safe, summed over sub-steps
-  std::uint64_t stopped_ = 0, ccd_steps_ = 0, self_passes_ = 0, obstacle_passes_ = 0;
+  std::uint64_t stopped_ = 0, ccd_steps_ = 0, self_passes_ = 0, obstacle_passes_ = 0, global_stops_ = 0;
   /// One CCD step x → p, counting the passes it ran (the proof that a scene without self-contact runs none).
   StepResult detect(const SimState& s) { return detect(s, *pipeline_); }
   StepResult detect(const SimState& s, CcdPipeline& pipeline) {
