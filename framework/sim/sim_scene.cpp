@@ -187,7 +187,10 @@ SimScene load_checked(const std::string& path, const std::vector<std::string>& o
     const std::string p = fmt::format("effects[{}]", i);
     s.effects.push_back(r.strategy(effs[i], p, effects, ""));
     nlohmann::json j = {{"name", s.effects.back().name}};
-    for (const auto& [k, v] : s.effects.back().params.all()) std::visit([&](const auto& x) { j[k] = x; }, v);
+    for (const auto& [key, v] : s.effects.back().params.all()) {
+      const std::string& k = key;  // a structured binding cannot be captured by clang 14
+      std::visit([&](const auto& x) { j[k] = x; }, v);
+    }
     effect_json.push_back(j);
   }
   s.setup.rest = s.mesh.positions;
