@@ -31,6 +31,7 @@ int list_command() {
   print_registry(scheduler_registry(), "scheduler");
   print_registry(tester_registry(), "tester");
   print_registry(scene_registry(), "scene.builtin");
+  print_registry(effect_registry(), "effects (of simulated scenes: ccdlab simulate)");
   return 0;
 }
 
