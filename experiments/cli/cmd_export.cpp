@@ -20,14 +20,12 @@
 namespace ccdlab::cli {
 namespace {
 
-struct Fronts {
-  std::vector<std::vector<FrontNode>> per_pass;
-};
+using Fronts = std::vector<std::vector<FrontNode>>;  ///< per traversal pass
 
 Fronts fronts_of(const CcdPipeline& pipeline) {
   const auto* front = dynamic_cast<const FrontScheduler*>(pipeline.strategies().scheduler.get());
   Fronts out;
-  for (const TraversalPass& pass : pipeline.passes()) out.per_pass.push_back(front->front(pass.id));
+  for (const TraversalPass& pass : pipeline.passes()) out.push_back(front->front(pass.id));
   return out;
 }
 
@@ -113,12 +111,11 @@ int export_command(const ExportOptions& o) {
   for (std::size_t p = 0; p < pipeline.passes().size(); ++p) {
     const TraversalPass& pass = pipeline.passes()[p];
     const std::vector<FrontNode> none;
-    const auto change = classify_front(*pass.bvh_a, *pass.bvh_b, before.per_pass.empty() ? none : before.per_pass[p],
-                                       after.per_pass[p]);
+    const auto change = classify_front(*pass.bvh_a, *pass.bvh_b, before.empty() ? none : before[p], after[p]);
     for (FrontChange c : change) ++changes[std::size_t(c)];
     const std::string name = fmt::format("front_pass{}.vtu", p);
     front_grid(*pass.bvh_a, *pass.bvs_a, *pass.bvh_b, *pass.bvs_b,
-               after.per_pass[p], change)
+               after[p], change)
         .write(path(name), "--out");
     front_files.push_back(name);
   }

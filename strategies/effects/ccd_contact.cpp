@@ -51,7 +51,7 @@ class CcdContact final : public Effect {
     for (int round = 0; round < p_.iterations; ++round) {
       const StepResult r = detect(s);
       std::uint64_t applied = 0;
-      for (const Contact& c : r.contacts) applied += respond(setup, s, c, dt, true);
+      for (const Contact& c : r.contacts) applied += respond(setup, s, c, dt);
       if (applied == 0) break;  // every contact already ends the step far enough apart
       resolved += applied;
       for (std::size_t i = 0; i < s.p.size(); ++i)
@@ -113,8 +113,8 @@ class CcdContact final : public Effect {
  private:
   /// One contact's impulse. Weights w give the relative position of the features: VF vertex − face point,
   /// EE point on a − point on b; the normal is oriented so that the separation at t is positive.
-  /// Returns whether the contact needs an impulse; applies it when `apply` is set.
-  std::uint64_t respond(const SimSetup& setup, SimState& s, const Contact& c, double dt, bool apply) const {
+  /// Applies the contact's impulse if it needs one; returns 1 if it did.
+  std::uint64_t respond(const SimSetup& setup, SimState& s, const Contact& c, double dt) const {
     std::array<double, 4> w{};
     const auto [u, t] = c.coords;
     if (c.kind == ContactKind::vf) w = {1, -(1 - u - t), -u, -t};
@@ -131,7 +131,6 @@ class CcdContact final : public Effect {
     for (int k = 0; k < 4; ++k) vn += w[std::size_t(k)] * s.v[std::size_t(c.vertices[std::size_t(k)])].dot(n);
     const double target = (0.1 * std::max(setup.thickness, 1e-9) - d0) / dt;  // end the step ≥ thickness/10 apart
     if (vn >= target || mass == 0) return 0;
-    if (!apply) return 1;
     const double j = (target - vn) / mass;
     for (int k = 0; k < 4; ++k) {
       const auto i = std::size_t(c.vertices[std::size_t(k)]);
