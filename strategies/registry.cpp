@@ -126,9 +126,9 @@ const EffectRegistry& effect_registry() {
            make_pin});
     r.add({"obstacle_contact", "pushes cloth out of sphere and capsule obstacles (exact shapes), with friction",
            {{"friction", P::real, 0.3, "Coulomb coefficient", 0, 10}}, make_obstacle_contact});
-    r.add({"ccd_contact", "crossing-free sub-steps: ccdlab's CCD, impulses, and a stop-where-you-were fail-safe",
+    r.add({"ccd_contact", "crossing-free sub-steps: ccdlab's CCD, impulses, then rigid impact zones",
            {{"self", P::boolean, true, "self-contact of the cloth (false: cloth-obstacle only; no self pass runs)", 0, 0},
-            {"iterations", P::integer, 4LL, "impulse rounds before the fail-safe", 1, 1000},
+            {"iterations", P::integer, 4LL, "impulse rounds before the impact zones", 1, 1000},
             {"k", P::integer, 18LL, "k-DOP of the CCD's BVH", 6, 26},
             {"scheduler", P::string, std::string("phc"), "the CCD's traversal scheduler", 0, 0,
              {"sequential", "phc", "front", "static"}}},

@@ -32,8 +32,11 @@ double triangle_distance(const Vec3& a0, const Vec3& a1, const Vec3& a2, const V
 }
 
 QualityMeter::QualityMeter(const TriMesh& mesh, std::vector<Body> bodies, PipelineStrategies strategies, double thickness)
-    : mesh_(mesh), thickness_(thickness),
-      pipeline_(std::make_unique<CcdPipeline>(mesh, std::move(bodies), std::move(strategies))) {}
+    : mesh_(mesh), thickness_(thickness), obstacle_face_(std::size_t(mesh.num_faces()), 0) {
+  for (const Body& b : bodies)
+    if (b.kind != BodyKind::cloth) std::fill(obstacle_face_.begin() + b.face_begin, obstacle_face_.begin() + b.face_end, 1);
+  pipeline_ = std::make_unique<CcdPipeline>(mesh, std::move(bodies), std::move(strategies));
+}
 
 FrameQuality QualityMeter::measure(const Positions& x) {
   pipeline_->step(x, x);  // the broad phase of a step from the frame to itself: face pairs within the thickness
@@ -48,7 +51,10 @@ FrameQuality QualityMeter::measure(const Positions& x) {
     ++q.candidate_pairs;
     const Vec3 &a0 = x[std::size_t(fa[0])], &a1 = x[std::size_t(fa[1])], &a2 = x[std::size_t(fa[2])];
     const Vec3 &b0 = x[std::size_t(fb[0])], &b1 = x[std::size_t(fb[1])], &b2 = x[std::size_t(fb[2])];
-    if (triangles_intersect(a0, a1, a2, b0, b1, b2)) ++q.intersecting_pairs;
+    if (triangles_intersect(a0, a1, a2, b0, b1, b2)) {
+      ++q.intersecting_pairs;
+      q.intersecting_obstacle_pairs += obstacle_face_[std::size_t(pair.a)] | obstacle_face_[std::size_t(pair.b)];
+    }
     else if (thickness_ > 0 && triangle_distance(a0, a1, a2, b0, b1, b2) < thickness_) ++q.close_pairs;
   }
   return q;

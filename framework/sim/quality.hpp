@@ -19,6 +19,7 @@ double triangle_distance(const Vec3& a0, const Vec3& a1, const Vec3& a2, const V
 
 struct FrameQuality {
   std::uint64_t intersecting_pairs = 0;
+  std::uint64_t intersecting_obstacle_pairs = 0;  ///< of those, pairs with an obstacle's triangle
   std::uint64_t close_pairs = 0;  ///< closer than the thickness, not intersecting
   std::uint64_t candidate_pairs = 0;
 };
@@ -32,6 +33,7 @@ class QualityMeter {
  private:
   const TriMesh& mesh_;
   double thickness_;
+  std::vector<char> obstacle_face_;  ///< per face: 1 when it belongs to an obstacle (not cloth)
   std::unique_ptr<CcdPipeline> pipeline_;
 };
 

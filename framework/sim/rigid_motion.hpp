@@ -2,8 +2,10 @@
 // Scripted rigid motion of an obstacle (or any kinematic body): a translation at constant velocity, a spin
 // about an axis through a pivot starting at some time, and optional keyframes (time, offset, angle about the
 // spin axis) interpolated linearly. Positions are exact functions of time, so every sub-step and every thread
-// count sees the same obstacle.
+// count sees the same obstacle. A motion may have a parent (a capsule chain: the shin moves with the thigh):
+// its transform is then the parent's at t composed with its own, so a joint stays where the parent puts it.
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -26,11 +28,18 @@ struct RigidMotion {
   double spin_rate = 0;          ///< radians per second, from `spin_start`
   double spin_start = 0;
   std::vector<RigidKeyframe> keyframes;  ///< sorted by time; before the first / after the last: held
+  std::shared_ptr<const RigidMotion> parent;  ///< applied after this motion (in the parent's frame), or none
 
-  [[nodiscard]] bool moves() const { return velocity.squaredNorm() > 0 || spin_rate != 0 || !keyframes.empty(); }
+  [[nodiscard]] bool moves() const {
+    return velocity.squaredNorm() > 0 || spin_rate != 0 || !keyframes.empty() || (parent && parent->moves());
+  }
 
-  /// The rigid transform at time t: a rest point r goes to R(t) (r − pivot) + pivot + offset(t).
-  [[nodiscard]] Eigen::Isometry3d at(double t) const {
+  /// The rigid transform at time t: a rest point r goes to P(t) (R(t) (r − pivot) + pivot + offset(t)), P the
+  /// parent's transform (identity without a parent).
+  [[nodiscard]] Eigen::Isometry3d at(double t) const { return parent ? parent->at(t) * own_at(t) : own_at(t); }
+
+ private:
+  [[nodiscard]] Eigen::Isometry3d own_at(double t) const {
     Vec3 offset = velocity * (std::clamp(t, move_start, move_end) - move_start);
     double angle = spin_rate * std::max(0.0, t - spin_start);
     if (!keyframes.empty()) {

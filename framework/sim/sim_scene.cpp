@@ -1,7 +1,10 @@
 #include "framework/sim/sim_scene.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 
 #include "framework/config/yaml_reader.hpp"
 #include "framework/mesh/shapes.hpp"
@@ -59,6 +62,15 @@ RigidMotion read_motion(const YamlReader& r, const YAML::Node& node, const std::
   return m;
 }
 
+/// A motion's own keys, resolved (the scene hash covers them).
+nlohmann::json motion_json(const RigidMotion& m) {
+  auto v = [](const Vec3& x) { return std::array<double, 3>{x.x(), x.y(), x.z()}; };
+  nlohmann::json keys = nlohmann::json::array();
+  for (const RigidKeyframe& k : m.keyframes) keys.push_back({{"time", k.time}, {"offset", v(k.offset)}, {"angle", k.angle}});
+  return {{"velocity", v(m.velocity)}, {"move_start", m.move_start}, {"move_end", m.move_end}, {"pivot", v(m.pivot)},
+          {"axis", v(m.axis)},         {"spin_rate", m.spin_rate},   {"spin_start", m.spin_start}, {"keyframes", keys}};
+}
+
 /// Appends one body's mesh; returns its resolved keys.
 nlohmann::json read_shape(const YamlReader& r, const YAML::Node& node, const std::string& path, bool cloth,
                           double resolution, const std::string& dir, MeshData& mesh, SimObstacle& ob) {
@@ -77,7 +89,7 @@ nlohmann::json read_shape(const YamlReader& r, const YAML::Node& node, const std
     append_sheet(mesh, c, sx, sz, nx, nz);
     j.update({{"size", {sx, sz}}, {"cells_scaled", {nx, nz}}, {"centre", {c.x(), c.y(), c.z()}}});
   } else if (shape == "frustum") {
-    r.check_keys(node, path, {"name", "shape", "centre", "r_top", "r_bottom", "height", "segments", "rows", "self_collision", "motion"});
+    r.check_keys(node, path, {"name", "shape", "centre", "r_top", "r_bottom", "height", "segments", "rows", "self_collision", "motion", "parent"});
     const Vec3 c = vec3_or(r, node, "centre", path, Vec3::Zero());
     const double rt = real_or(r, node, "r_top", path, 1, 1e-6, 1e6), rb = real_or(r, node, "r_bottom", path, 1, 1e-6, 1e6);
     const double h = real_or(r, node, "height", path, 1, 1e-6, 1e6);
@@ -87,7 +99,7 @@ nlohmann::json read_shape(const YamlReader& r, const YAML::Node& node, const std
     append_frustum(mesh, c, rt, rb, h, segments, rows);
     j.update({{"centre", {c.x(), c.y(), c.z()}}, {"r_top", rt}, {"r_bottom", rb}, {"height", h}, {"segments", segments}, {"rows", rows}});
   } else if (!cloth && shape == "sphere") {
-    r.check_keys(node, path, {"name", "shape", "centre", "radius", "segments", "motion"});
+    r.check_keys(node, path, {"name", "shape", "centre", "radius", "segments", "motion", "parent"});
     ob.shape = SimObstacle::Shape::sphere;
     ob.a = vec3_or(r, node, "centre", path, Vec3::Zero());
     ob.radius = real_or(r, node, "radius", path, 0.5, 1e-6, 1e6);
@@ -95,7 +107,7 @@ nlohmann::json read_shape(const YamlReader& r, const YAML::Node& node, const std
     append_sphere(mesh, ob.a, ob.radius, segments);
     j.update({{"centre", {ob.a.x(), ob.a.y(), ob.a.z()}}, {"radius", ob.radius}, {"segments", segments}});
   } else if (!cloth && shape == "capsule") {
-    r.check_keys(node, path, {"name", "shape", "a", "b", "radius", "segments", "motion"});
+    r.check_keys(node, path, {"name", "shape", "a", "b", "radius", "segments", "motion", "parent"});
     ob.shape = SimObstacle::Shape::capsule;
     ob.a = vec3_or(r, node, "a", path, Vec3::Zero());
     ob.b = vec3_or(r, node, "b", path, Vec3::UnitY());
@@ -104,7 +116,7 @@ nlohmann::json read_shape(const YamlReader& r, const YAML::Node& node, const std
     append_capsule(mesh, ob.a, ob.b, ob.radius, segments);
     j.update({{"a", {ob.a.x(), ob.a.y(), ob.a.z()}}, {"b", {ob.b.x(), ob.b.y(), ob.b.z()}}, {"radius", ob.radius}, {"segments", segments}});
   } else if (!cloth && shape == "mesh") {
-    r.check_keys(node, path, {"name", "shape", "file", "motion"});
+    r.check_keys(node, path, {"name", "shape", "file", "motion", "parent"});
     if (!node["file"]) fail("{}: a mesh obstacle needs file: PATH (OBJ or PLY)", r.where(node, path));
     std::string file = r.string(node["file"], path + ".file");
     if (fs::path(file).is_relative() && !r.from_command_line(path + ".file")) file = (fs::path(dir) / file).string();
@@ -174,8 +186,17 @@ SimScene load_checked(const std::string& path, const std::vector<std::string>& o
       ob.body = int(s.setup.bodies.size());
       const Vec3 pivot = ob.shape == SimObstacle::Shape::capsule ? Vec3((ob.a + ob.b) / 2) : ob.a;
       if (obs[i]["motion"]) ob.motion = read_motion(r, obs[i]["motion"], p + ".motion", pivot);
+      std::string parent;
+      if (obs[i]["parent"]) {  // a chain: this obstacle's motion happens in its parent's moving frame
+        parent = r.string(obs[i]["parent"], p + ".parent");
+        const auto earlier = std::find_if(s.setup.obstacles.begin(), s.setup.obstacles.end(),
+                                          [&](const SimObstacle& o) { return o.name == parent; });
+        if (earlier == s.setup.obstacles.end()) r.error(obs[i]["parent"], p + ".parent", "the name of an obstacle listed before this one");
+        ob.motion.parent = std::make_shared<const RigidMotion>(earlier->motion);
+      }
       add_body(ob.name, BodyKind::obstacle, false, v0, f0);
-      j.update({{"name", ob.name}, {"moves", ob.motion.moves()}});
+      j.update({{"name", ob.name}, {"moves", ob.motion.moves()}, {"parent", parent}});
+      if (obs[i]["motion"]) j["motion"] = motion_json(ob.motion);  // in the hash: a changed motion is a new scene
       s.setup.obstacles.push_back(ob);
       obstacles.push_back(j);
     }

@@ -6,16 +6,16 @@
 //   normal, velocities taken as constant) gets an inelastic impulse that keeps it that far apart (Bridson,
 //   Fedkiw & Anderson 2002, velocity filtering); positions p = x + dt·v are updated and the CCD runs again,
 //   until no contact needs an impulse.
-// Then the fail-safe: the motion runs through a second pipeline with zero thickness — any contact there is a
-// true touch or crossing — and the free vertices of each stop where they were at t (against free cloth), move
-// rigidly with the obstacle they touch, or move with the pinned vertices they touch, until none is left; when
-// contacts keep cascading (half the rounds), the whole free cloth stops for the sub-step (`global_stops`). The
-// frame at t was free of crossings, so all of these are safe; what is left after 16 rounds is counted
-// (`unresolved`), never hidden.
+// Then the last resort, rigid impact zones (impact_zones.hpp): the motion runs through a second pipeline with
+// zero thickness — any contact there is a true touch or crossing — and the vertices of each contact join a zone
+// that moves rigidly (with its momentum, or with the scripted motion it holds), round after round until none is
+// left. The frame at t was free of crossings and rigid motion keeps it so; what is left (pinched zones, or the
+// round bound) is counted (`unresolved`), never hidden.
 #include <algorithm>
 
 #include "framework/pipeline/ccd_pipeline.hpp"
 #include "strategies/effects/effects.hpp"
+#include "strategies/effects/impact_zones.hpp"
 #include "strategies/registry.hpp"
 
 namespace ccdlab {
@@ -57,57 +57,20 @@ class CcdContact final : public Effect {
       for (std::size_t i = 0; i < s.p.size(); ++i)
         if (setup.inv_mass[i] > 0) s.p[i] = s.x[i] + dt * s.v[i];
     }
-    // Fail-safe: the motion is checked with zero thickness — any contact now is a true touch or crossing. The
-    // free vertices of a contact with the cloth stop where they were at t; those of a contact with an obstacle
-    // are carried by the obstacle's own motion over the sub-step (stopping cannot help against a moving
-    // obstacle). Until none is left.
-    std::size_t left = 0;
-    for (int round = 0; round < kFailSafeRounds; ++round) {
-      const StepResult r = detect(s, *crossing_);
-      left = r.contacts.size();
-      if (left == 0) break;
-      if (round == kFailSafeRounds / 2) {
-        // Contacts keep cascading (heavy gathering): the whole free cloth stops for this sub-step; only what
-        // scripted motion carries still moves, and the rounds below resolve contacts against it.
-        for (std::size_t i = 0; i < s.p.size(); ++i)
-          if (setup.inv_mass[i] > 0) s.p[i] = s.x[i], s.v[i] = Vec3::Zero();
-        ++global_stops_;
-        continue;
-      }
-      for (const Contact& c : r.contacts) {
-        // What the free vertices of the contact must follow: an obstacle's rigid motion, else the mean
-        // displacement of the contact's scripted vertices (pins, handles), else nothing (they stop).
-        int obstacle = -1, scripted = 0;
-        Vec3 shift = Vec3::Zero();
-        for (Index v : c.vertices) {
-          const auto i = std::size_t(v);
-          if (setup.inv_mass[i] > 0) continue;
-          if (i < setup.follows.size() && setup.follows[i] >= 0) obstacle = setup.follows[i];
-          shift += s.p[i] - s.x[i], ++scripted;
-        }
-        Eigen::Isometry3d carry = Eigen::Isometry3d::Identity();
-        if (obstacle >= 0) {
-          const RigidMotion& m = setup.obstacles[std::size_t(obstacle)].motion;
-          carry = m.at(s.time + dt) * m.at(s.time).inverse();
-        } else if (scripted > 0) {
-          carry.translate(shift / scripted);
-        }
-        for (Index v : c.vertices) {
-          const auto i = std::size_t(v);
-          if (setup.inv_mass[i] == 0) continue;
-          s.p[i] = carry * s.x[i];
-          s.v[i] = (s.p[i] - s.x[i]) / dt;
-        }
-      }
-      stopped_ += left;
-    }
-    unresolved_ += left;
+    // Last resort: rigid impact zones (impact_zones.hpp) on the motion checked with zero thickness — any
+    // contact there is a true touch or crossing — until none is left or no round can merge anything new.
+    const ImpactZones::Outcome zoned = zones_.resolve(*crossing_, setup, s, dt, kZoneRounds);
+    count_passes(*crossing_, zoned.detections);
+    zone_contacts_ += zoned.handled;
+    unresolved_ += zoned.left;
     return resolved;
   }
 
   [[nodiscard]] nlohmann::json stats() const override {
-    return {{"ccd_steps", ccd_steps_}, {"self_passes", self_passes_}, {"obstacle_passes", obstacle_passes_},
-            {"failsafe_contacts", stopped_}, {"global_stops", global_stops_}, {"unresolved", unresolved_}};
+    return {{"ccd_steps", ccd_steps_},       {"self_passes", self_passes_},
+            {"obstacle_passes", obstacle_passes_}, {"zone_contacts", zone_contacts_},
+            {"zones_moved", zones_.zones_moved}, {"largest_zone", zones_.largest_zone},
+            {"pinched_zones", zones_.pinched_zones}, {"unresolved", unresolved_}};
   }
 
  private:
@@ -139,18 +102,22 @@ class CcdContact final : public Effect {
     return 1;
   }
 
-  static constexpr int kFailSafeRounds = 16;
+  static constexpr int kZoneRounds = 64;  ///< zones only grow: a bound, seldom reached
   Params p_;
   std::unique_ptr<CcdPipeline> pipeline_;  ///< thickness-inflated: contacts to respond to
-  std::unique_ptr<CcdPipeline> crossing_;  ///< zero thickness: true touches and crossings (the fail-safe)
-  std::uint64_t unresolved_ = 0;   ///< contacts left after the fail-safe, summed over sub-steps
-  std::uint64_t stopped_ = 0, ccd_steps_ = 0, self_passes_ = 0, obstacle_passes_ = 0, global_stops_ = 0;
+  std::unique_ptr<CcdPipeline> crossing_;  ///< zero thickness: true touches and crossings (impact zones)
+  ImpactZones zones_;
+  std::uint64_t unresolved_ = 0;     ///< contacts left after the impact zones, summed over sub-steps
+  std::uint64_t zone_contacts_ = 0;  ///< contacts handed to the impact zones, summed over rounds
+  std::uint64_t ccd_steps_ = 0, self_passes_ = 0, obstacle_passes_ = 0;
   /// One CCD step x → p, counting the passes it ran (the proof that a scene without self-contact runs none).
-  StepResult detect(const SimState& s) { return detect(s, *pipeline_); }
-  StepResult detect(const SimState& s, CcdPipeline& pipeline) {
-    ++ccd_steps_;
-    for (const TraversalPass& pass : pipeline.passes()) ++(pass.self ? self_passes_ : obstacle_passes_);
-    return pipeline.step(s.x, s.p);
+  StepResult detect(const SimState& s) {
+    count_passes(*pipeline_, 1);
+    return pipeline_->step(s.x, s.p);
+  }
+  void count_passes(const CcdPipeline& pipeline, int steps) {
+    ccd_steps_ += std::uint64_t(steps);
+    for (const TraversalPass& pass : pipeline.passes()) (pass.self ? self_passes_ : obstacle_passes_) += std::uint64_t(steps);
   }
 };
 

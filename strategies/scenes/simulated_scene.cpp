@@ -71,7 +71,8 @@ std::string simulate_to_folder(const SimulateRequest& o, bool print) {
       before[e] = now;
     }
     frames.push_back({{"frame", f}, {"file", file}, {"time_s", sim.time()}, {"sim_ms", sim_ms}, {"effects", per_effect},
-                      {"intersecting_pairs", q.intersecting_pairs}, {"close_pairs", q.close_pairs},
+                      {"intersecting_pairs", q.intersecting_pairs},
+                      {"intersecting_obstacle_pairs", q.intersecting_obstacle_pairs}, {"close_pairs", q.close_pairs},
                       {"kinetic_energy", sim.kinetic_energy()}});
     if (print) fmt::print("{} {:>8} {:>8} {:>12.4g}\n", row, q.intersecting_pairs, q.close_pairs, sim.kinetic_energy());
     progress.update(f + 1);

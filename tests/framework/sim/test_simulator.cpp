@@ -1,7 +1,7 @@
 // The scene simulator: bit-identical frames whatever the thread count; an effect a scene does not list is never
 // evaluated (no wind object, no self pass when self-contact is off); the CCD-based contact response keeps a
 // sheet draped over a spinning ball free of crossings; XPBD stretch holds a hanging sheet; located errors in
-// scene files; the discrete triangle–triangle test of the quality report.
+// scene files; capsule chains and hashed motions; the discrete triangle–triangle test of the quality report.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -162,6 +162,43 @@ TEST(SimScene, ErrorsNameTheFileLineAndKey) {
   // An effect whose parameters select nothing is refused when the simulator sets it up.
   const std::string path = write_scene("pin.yaml", base);
   EXPECT_THROW(simulate(path, {"effects=[{name: pin, min_x: 5}]"}), Error);
+}
+
+TEST(SimScene, ACapsuleChainMovesInItsParentsFrameAndMotionsAreHashed) {
+  const std::string chain = R"(frames: 2
+resolution: 1
+threads: 1
+cloth:
+  - {shape: sheet, size: [1, 1], cells: [2, 2], centre: [0, 2, 0]}
+obstacles:
+  - {name: thigh, shape: capsule, a: [0, 1, 0], b: [0, 0.5, 0], radius: 0.1,
+     motion: {pivot: [0, 1, 0], axis: [1, 0, 0], keyframes: [{time: 0, angle_deg: 0}, {time: 1, angle_deg: -90}]}}
+  - {name: shin, shape: capsule, a: [0, 0.5, 0], b: [0, 0, 0], radius: 0.08, parent: thigh,
+     motion: {pivot: [0, 0.5, 0], axis: [1, 0, 0], keyframes: [{time: 0, angle_deg: 0}, {time: 1, angle_deg: 90}]}}
+effects:
+  - {name: gravity}
+)";
+  const SimScene scene = load_sim_scene(write_scene("chain.yaml", chain), {}, effect_registry());
+  const RigidMotion& shin = scene.setup.obstacles[1].motion;
+  for (double t : {0.0, 0.3, 1.0}) {
+    // The knee (the shin's top) stays at the thigh's end; the shin turns back to hang straight down.
+    const Vec3 knee = shin.at(t) * Vec3(0, 0.5, 0), thigh_end = scene.setup.obstacles[0].motion.at(t) * Vec3(0, 0.5, 0);
+    EXPECT_LT((knee - thigh_end).norm(), 1e-12) << "t = " << t;
+    EXPECT_LT(((shin.at(t) * Vec3(0, 0, 0)) - (knee - Vec3(0, 0.5, 0))).norm(), 1e-12) << "t = " << t;
+  }
+  EXPECT_LT((shin.at(1) * Vec3(0, 0.5, 0) - Vec3(0, 1, 0.5)).norm(), 1e-12) << "thigh horizontal at t = 1";
+  // A changed keyframe is a different scene (the cache must not return the old frames).
+  std::string changed = chain;
+  changed.replace(changed.find("angle_deg: 90}"), 14, "angle_deg: 80}");
+  EXPECT_NE(scene_hash(scene), scene_hash(load_sim_scene(write_scene("chain2.yaml", changed), {}, effect_registry())));
+  std::string orphan = chain;
+  orphan.replace(orphan.find("parent: thigh"), 13, "parent: hip");
+  try {
+    load_sim_scene(write_scene("orphan.yaml", orphan), {}, effect_registry());
+    ADD_FAILURE() << "an unknown parent is refused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("obstacles[1].parent: expected the name of an obstacle listed before"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Quality, TriangleIntersectionAndDistance) {
