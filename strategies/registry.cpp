@@ -194,6 +194,8 @@ const SceneRegistry& scene_registry() {
     r.add({"simulated", "a scene of the simulator (experiments/scenes/*.yaml), simulated once and cached by its hash",
            {{"file", ParamType::string, std::string(), "the scene file (relative to the working directory)", 0, 0},
             {"num_frames", ParamType::integer, 0LL, "frames to simulate (0 = the scene's own)", 0, 1000000},
+            {"first_frame", ParamType::integer, 0LL, "the first frame CCD steps from (earlier frames are simulated, not stepped)", 0, 1000000},
+            {"last_frame", ParamType::integer, 0LL, "the last frame CCD steps to (0 = the last simulated)", 0, 1000000},
             {"resolution", ParamType::real, 0.0, "size factor (0 = the scene's own; 1 = full size)", 0, 100},
             {"threads", ParamType::integer, 0LL, "simulation threads (0 = the scene's own; frames do not depend on it)", 0, 1024},
             {"dir", ParamType::string, std::string(), "folder of the frames (empty = results/scenes/NAME-HASH)", 0, 0}},
@@ -203,7 +205,8 @@ const SceneRegistry& scene_registry() {
              if (p.integer("num_frames") > 0) request.overrides.push_back(fmt::format("frames={}", p.integer("num_frames")));
              if (p.real("resolution") > 0) request.overrides.push_back(fmt::format("resolution={}", p.real("resolution")));
              if (p.integer("threads") > 0) request.overrides.push_back(fmt::format("threads={}", p.integer("threads")));
-             return load_simulated_frames(simulate_to_folder(request, false));
+             return load_simulated_frames(simulate_to_folder(request, false), int(p.integer("first_frame")),
+                                          int(p.integer("last_frame")));
            }});
     return r;
   }();

@@ -81,6 +81,14 @@ def test_an_experiment_names_a_simulated_scene(tmp_path):
         assert summary["steps"] == 3
         hashes.add(summary["hash"])
     assert len(hashes) == 1
+    # first_frame: CCD from a later frame of the same (cached) frames; too late a start is refused.
+    done = subprocess.run([str(CLI), "run", str(config), "--json", "--no-progress", "--set", "scene.first_frame=1"],
+                          capture_output=True, text=True, cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert json.loads(done.stdout)["steps"] == 2
+    done = subprocess.run([str(CLI), "run", str(config), "--no-progress", "--set", "scene.first_frame=3"],
+                          capture_output=True, text=True, cwd=tmp_path)
+    assert done.returncode != 0 and "scene.first_frame: expected 0 … 2" in done.stderr, done.stderr
     bad = tmp_path / "bad.yaml"
     bad.write_text("scene: {builtin: simulated}\n")
     done = subprocess.run([str(CLI), "run", str(bad), "--no-progress"], capture_output=True, text=True)

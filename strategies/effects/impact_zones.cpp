@@ -1,6 +1,7 @@
 #include "strategies/effects/impact_zones.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <utility>
 
@@ -19,15 +20,23 @@ void ImpactZones::reset(std::size_t vertices) {
 ImpactZones::Outcome ImpactZones::resolve(CcdPipeline& crossing, const SimSetup& setup, SimState& s, double dt,
                                            int max_rounds) {
   reset(s.p.size());
+  inelastic_ = false;
   Outcome out;
   for (int round = 0;; ++round) {  // the last detection checks the last move
     const StepResult r = crossing.step(s.x, s.p);
     ++out.detections;
     out.left = r.contacts.size();
-    if (out.left == 0 || round == max_rounds || merge(r.contacts) == 0) break;
+    // Contacts that keep cascading (a zone's motion runs into more cloth, round after round) escalate: from
+    // round kEscalate on, everything in contact merges into one zone, so the zone grows by all of it at once.
+    // Escalated zones also give up their momentum: a zone without scripted vertices stops for the sub-step (an
+    // inelastic impact — still a rigid motion), so it cannot run into more cloth.
+    if (out.left == 0 || round == max_rounds || merge(r.contacts, round >= kEscalate) == 0) break;
+    escalated += round == kEscalate;
+    inelastic_ = round >= kEscalate;
     out.handled += out.left;
     move(setup, s, dt);
   }
+  most_rounds = std::max<std::uint64_t>(most_rounds, std::uint64_t(out.detections - 1));
   return out;
 }
 
@@ -39,12 +48,12 @@ Index ImpactZones::find(Index v) {
   return v;
 }
 
-std::size_t ImpactZones::merge(const std::vector<Contact>& contacts) {
+std::size_t ImpactZones::merge(const std::vector<Contact>& contacts, bool into_one) {
   std::size_t joined = 0;
   for (const Contact& c : contacts) {
     bool new_zone = false;
-    Index root = find(c.vertices[0]);
-    for (std::size_t k = 1; k < 4; ++k) {
+    Index root = find(into_one ? contacts.front().vertices[0] : c.vertices[0]);
+    for (std::size_t k = into_one ? 0 : 1; k < 4; ++k) {
       Index other = find(c.vertices[k]);
       if (other == root) continue;
       new_zone = true;
@@ -116,6 +125,7 @@ void ImpactZones::move(const SimSetup& setup, SimState& s, double dt) {
   for (Index v : touched_) by_zone.emplace_back(find(v), v);
   std::sort(by_zone.begin(), by_zone.end());
   std::vector<Index> free, scripted;
+  std::vector<Eigen::Isometry3d> motions;  // of the zone's scripted vertices
   for (std::size_t begin = 0; begin < by_zone.size();) {
     std::size_t end = begin;
     free.clear(), scripted.clear();
@@ -127,23 +137,39 @@ void ImpactZones::move(const SimSetup& setup, SimState& s, double dt) {
     if (free.empty()) continue;
     largest_zone = std::max<std::uint64_t>(largest_zone, free.size() + scripted.size());
     ++zones_moved;
-    Eigen::Isometry3d motion;
-    if (scripted.empty()) {
-      motion = momentum_motion(setup, s, free, dt);
-    } else {
-      motion = scripted_motion(setup, s, std::size_t(scripted.front()), dt);
-      for (Index v : scripted) {
-        const auto i = std::size_t(v);
-        if ((motion * s.x[i] - s.p[i]).norm() > 1e-9 * (1 + s.p[i].norm())) {
-          ++pinched_zones;  // two scripted motions in one zone: it follows the first
-          break;
-        }
-      }
-    }
-    for (Index v : free) {
+    auto place = [&](Index v, const Eigen::Isometry3d& motion) {
       const auto i = std::size_t(v);
       s.p[i] = motion * s.x[i];
       s.v[i] = (s.p[i] - s.x[i]) / dt;
+    };
+    if (scripted.empty()) {
+      const Eigen::Isometry3d motion = inelastic_ ? Eigen::Isometry3d::Identity() : momentum_motion(setup, s, free, dt);
+      for (Index v : free) place(v, motion);
+      continue;
+    }
+    motions.clear();
+    for (Index v : scripted) motions.push_back(scripted_motion(setup, s, std::size_t(v), dt));
+    bool pinched = false;
+    for (std::size_t k = 1; k < scripted.size() && !pinched; ++k) {
+      const auto i = std::size_t(scripted[k]);
+      pinched = (motions.front() * s.x[i] - s.p[i]).norm() > 1e-9 * (1 + s.p[i].norm());
+    }
+    if (!pinched) {
+      for (Index v : free) place(v, motions.front());
+      continue;
+    }
+    // No rigid motion follows two scripted motions: each free vertex follows the scripted vertex nearest to it
+    // at t (cloth over a knee follows the thigh above and the shin below). Counted: contacts this leaves are
+    // counted by the caller.
+    ++pinched_zones;
+    for (Index v : free) {
+      std::size_t nearest = 0;
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < scripted.size(); ++k) {
+        const double d = (s.x[std::size_t(scripted[k])] - s.x[std::size_t(v)]).squaredNorm();
+        if (d < best) best = d, nearest = k;
+      }
+      place(v, motions[nearest]);
     }
   }
 }

@@ -9,10 +9,14 @@
 // Why this ends every crossing: the frame at t is crossing-free, and a rigid motion of a crossing-free set keeps
 // it crossing-free, so the only contacts left involve two different zones (or a zone and a free vertex) — and
 // the next round merges them. Zones only grow, so the rounds end; in the worst case everything in contact is one
-// zone moving with the scripted motion it holds.
-// The one case rigid motion cannot resolve: a zone holding scripted vertices whose motions differ (cloth
-// pinched between two obstacles that move differently, e.g. in the crease of a hip joint). Such a zone follows
-// its first scripted motion and is counted as `pinched`; the contacts it keeps are counted, never hidden.
+// zone moving with the scripted motion it holds. When contacts keep cascading (a falling zone runs into more
+// cloth, round after round), the rounds escalate: everything in contact merges into one zone at once, and
+// zones without scripted vertices stop for the sub-step (an inelastic impact, still rigid) instead of carrying
+// their momentum into more cloth.
+// The one case rigid motion cannot resolve: a zone holding scripted vertices whose motions differ (cloth that
+// touches two obstacles moving differently: draped over a knee, or pinched in the crease of a joint). Such a
+// zone is counted as `pinched`, and each of its free vertices follows the scripted vertex nearest to it; what
+// this leaves (cloth truly squeezed between two bodies) is counted by the caller, never hidden.
 #include <cstdint>
 #include <vector>
 
@@ -36,9 +40,10 @@ class ImpactZones {
 
   /// Forgets every zone (each sub-step starts with single vertices).
   void reset(std::size_t vertices);
-  /// Merges the vertices of each contact into one zone. Returns how many contacts joined different zones:
-  /// 0 means every contact lies inside one rigidly moving zone already, and another round cannot help.
-  std::size_t merge(const std::vector<Contact>& contacts);
+  /// Merges the vertices of each contact into one zone (`into_one`: the vertices of all contacts into a single
+  /// zone). Returns how many contacts joined different zones: 0 means every contact lies inside one rigidly
+  /// moving zone already, and another round cannot help.
+  std::size_t merge(const std::vector<Contact>& contacts, bool into_one = false);
   /// Moves every zone of two or more vertices rigidly over the sub-step (p and v of its free vertices).
   void move(const SimSetup& setup, SimState& s, double dt);
 
@@ -47,11 +52,15 @@ class ImpactZones {
 
   std::uint64_t zones_moved = 0;     ///< zone moves, summed over rounds and sub-steps
   std::uint64_t largest_zone = 0;    ///< vertices in the largest zone seen
+  std::uint64_t most_rounds = 0;     ///< the most merge-and-move rounds one sub-step needed
+  std::uint64_t escalated = 0;       ///< sub-steps that reached kEscalate rounds (all contacts into one zone)
+  static constexpr int kEscalate = 8;
   std::uint64_t pinched_zones = 0;   ///< zone moves whose scripted vertices disagree on their motion
 
  private:
   Index find(Index v);
   std::vector<Index> parent_;
+  bool inelastic_ = false;      ///< escalated: zones without scripted vertices stop instead of keeping momentum
   std::vector<Index> touched_;  ///< vertices merged at least once this sub-step (the zones' members)
 };
 

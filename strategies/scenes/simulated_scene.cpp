@@ -102,7 +102,7 @@ std::string simulate_to_folder(const SimulateRequest& o, bool print) {
 }
 
 
-MeshSequence load_simulated_frames(const std::string& folder) {
+MeshSequence load_simulated_frames(const std::string& folder, int first_frame, int last_frame) {
   namespace fs = std::filesystem;
   const std::string meta_path = (fs::path(folder) / "meta.json").string();
   nlohmann::json meta;
@@ -113,7 +113,14 @@ MeshSequence load_simulated_frames(const std::string& folder) {
   }
   if (!meta.value("complete", false)) fail("{}: the simulation did not complete", meta_path);
   std::vector<std::string> files, labels;
-  for (const auto& f : meta.at("frames")) {
+  const auto& frames = meta.at("frames");
+  const int last = last_frame > 0 ? last_frame : int(frames.size()) - 1;
+  if (last >= int(frames.size()))
+    fail("scene.last_frame: expected at most {} (the frames of {}), got {}", int(frames.size()) - 1, folder, last_frame);
+  if (first_frame < 0 || first_frame + 1 > last)
+    fail("scene.first_frame: expected 0 … {} (two frames at least for one step) for {}, got {}", last - 1, folder, first_frame);
+  for (const auto& f : frames) {
+    if (const int i = f.at("frame").get<int>(); i < first_frame || i > last) continue;
     files.push_back((fs::path(folder) / f.at("file").get<std::string>()).string());
     labels.push_back(std::to_string(f.at("frame").get<int>()));
   }

@@ -23,7 +23,9 @@ struct SimulateRequest {
 /// returns the folder. `print`: the per-frame table on stdout.
 std::string simulate_to_folder(const SimulateRequest& request, bool print);
 
-/// The frames of a simulated folder (meta.json + frame_NNNN.ply), with the scene's bodies.
-MeshSequence load_simulated_frames(const std::string& folder);
+/// The frames `first_frame` … `last_frame` (0 = the last) of a simulated folder (meta.json + frame_NNNN.ply),
+/// with the scene's bodies: a window of a long animation (where the cloth is folded, not still falling);
+/// at least two frames.
+MeshSequence load_simulated_frames(const std::string& folder, int first_frame = 0, int last_frame = 0);
 
 }  // namespace ccdlab

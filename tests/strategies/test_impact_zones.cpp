@@ -1,6 +1,7 @@
 // Rigid impact zones, ccd_contact's last resort: a sheet driven through another comes out of the rounds with no
 // contact left, every zone moved rigidly and the free vertices' linear momentum kept; a zone that holds a
-// scripted vertex moves with it; a zone holding two different scripted motions is counted as pinched.
+// scripted vertex moves with it; a zone holding two different scripted motions is counted as pinched, and each
+// of its free vertices follows the nearest scripted vertex.
 #include <gtest/gtest.h>
 
 #include "framework/pipeline/ccd_pipeline.hpp"
@@ -97,22 +98,26 @@ TEST(ImpactZones, AZoneHoldingAScriptedVertexMovesWithIt) {
   EXPECT_EQ(zones.pinched_zones, 0u);
 }
 
-TEST(ImpactZones, TwoScriptedMotionsInOneZoneCountAsPinched) {
+TEST(ImpactZones, TwoScriptedMotionsInOneZoneCountAsPinchedAndEachVertexFollowsTheNearest) {
   TwoSheets s;
   const double dt = 0.01;
-  s.setup.inv_mass[0] = s.setup.inv_mass[s.half] = 0;  // one scripted vertex on each sheet, moving apart
-  s.state.p[0] = s.state.x[0] + Vec3(0, 0, -0.01);
-  s.state.p[s.half] = s.state.x[s.half] + Vec3(0, 0, 0.01);
+  // Scripted vertices 0 at (0, 0, 0) and 4 at (1, 0, 0) move apart; free 1 (0.25, 0, 0) and 3 (0.75, 0, 0).
+  s.setup.inv_mass[0] = s.setup.inv_mass[4] = 0;
+  const Vec3 down(0, 0, -0.01), up(0, 0, 0.01);
+  s.state.p[0] = s.state.x[0] + down;
+  s.state.p[4] = s.state.x[4] + up;
   Contact c{};
   c.kind = ContactKind::vf;
-  c.vertices = {0, Index(s.half), 1, Index(s.half + 1)};
+  c.vertices = {0, 1, 3, 4};
   ImpactZones zones;
   zones.reset(s.state.x.size());
   EXPECT_EQ(zones.merge({c}), 1u);
   EXPECT_EQ(zones.merge({c}), 0u) << "merged already: another round cannot help";
   zones.move(s.setup, s.state, dt);
   EXPECT_EQ(zones.pinched_zones, 1u);
-  EXPECT_EQ(s.state.p[1], s.state.x[1] + Vec3(0, 0, -0.01)) << "the zone follows its first scripted motion";
+  EXPECT_EQ(s.state.p[1], s.state.x[1] + down) << "vertex 1 follows vertex 0, the nearer";
+  EXPECT_EQ(s.state.p[3], s.state.x[3] + up) << "vertex 3 follows vertex 4";
+  EXPECT_EQ(s.state.p[2], s.state.x[2]) << "vertex 2 is in no zone";
 }
 
 }  // namespace
