@@ -35,6 +35,20 @@ struct SimObstacle {
   Vec3 a = Vec3::Zero(), b = Vec3::Zero();  ///< sphere: centre a; capsule: axis segment a–b (rest positions)
   double radius = 0;
   RigidMotion motion;
+
+  /// The point of the segment a–b nearest p (a sphere is the segment a–a): a capsule's or sphere's surface is
+  /// the set of points at `radius` from it.
+  [[nodiscard]] static Vec3 nearest_on_axis(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 ab = b - a;
+    return a + std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0) * ab;
+  }
+  /// Whether p is inside the exact shape at time t (a mesh obstacle has none: never).
+  [[nodiscard]] bool contains(const Vec3& p, double t) const {
+    if (shape == Shape::mesh) return false;
+    const Eigen::Isometry3d pose = motion.at(t);
+    const Vec3 pa = pose * a, pb = shape == Shape::capsule ? Vec3(pose * b) : pa;
+    return (p - nearest_on_axis(p, pa, pb)).squaredNorm() < radius * radius;
+  }
 };
 
 /// What every effect may read: the topology, the bodies, the rest shape and who moves freely.

@@ -126,6 +126,7 @@ void ImpactZones::move(const SimSetup& setup, SimState& s, double dt) {
   std::sort(by_zone.begin(), by_zone.end());
   std::vector<Index> free, scripted;
   std::vector<Eigen::Isometry3d> motions;  // of the zone's scripted vertices
+  std::vector<std::size_t> order;
   for (std::size_t begin = 0; begin < by_zone.size();) {
     std::size_t end = begin;
     free.clear(), scripted.clear();
@@ -158,18 +159,30 @@ void ImpactZones::move(const SimSetup& setup, SimState& s, double dt) {
       for (Index v : free) place(v, motions.front());
       continue;
     }
-    // No rigid motion follows two scripted motions: each free vertex follows the scripted vertex nearest to it
-    // at t (cloth over a knee follows the thigh above and the shin below). Counted: contacts this leaves are
-    // counted by the caller.
+    // No rigid motion follows two scripted motions. Each free vertex follows, of the zone's scripted vertices
+    // nearest first, the first whose motion does not carry it into an obstacle's exact shape (sphere, capsule)
+    // at t + dt — cloth on a knee follows whichever of thigh and shin keeps it outside both — else the nearest.
+    // Counted: contacts this leaves are counted by the caller.
     ++pinched_zones;
+    order.resize(scripted.size());
     for (Index v : free) {
-      std::size_t nearest = 0;
-      double best = std::numeric_limits<double>::infinity();
-      for (std::size_t k = 0; k < scripted.size(); ++k) {
-        const double d = (s.x[std::size_t(scripted[k])] - s.x[std::size_t(v)]).squaredNorm();
-        if (d < best) best = d, nearest = k;
+      const auto i = std::size_t(v);
+      std::iota(order.begin(), order.end(), std::size_t(0));
+      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        const double da = (s.x[std::size_t(scripted[a])] - s.x[i]).squaredNorm();
+        const double db = (s.x[std::size_t(scripted[b])] - s.x[i]).squaredNorm();
+        return da < db || (da == db && a < b);
+      });
+      std::size_t chosen = order.front();
+      for (std::size_t k : order) {
+        const Vec3 p = motions[k] * s.x[i];
+        if (std::none_of(setup.obstacles.begin(), setup.obstacles.end(),
+                         [&](const SimObstacle& o) { return o.contains(p, s.time + dt); })) {
+          chosen = k;
+          break;
+        }
       }
-      place(v, motions[nearest]);
+      place(v, motions[chosen]);
     }
   }
 }

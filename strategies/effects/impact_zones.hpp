@@ -15,8 +15,9 @@
 // their momentum into more cloth.
 // The one case rigid motion cannot resolve: a zone holding scripted vertices whose motions differ (cloth that
 // touches two obstacles moving differently: draped over a knee, or pinched in the crease of a joint). Such a
-// zone is counted as `pinched`, and each of its free vertices follows the scripted vertex nearest to it; what
-// this leaves (cloth truly squeezed between two bodies) is counted by the caller, never hidden.
+// zone is counted as `pinched`, and each of its free vertices follows, of the scripted vertices nearest first,
+// the first whose motion keeps it outside every obstacle's exact shape; what this leaves (cloth truly squeezed
+// between two bodies) is counted by the caller, never hidden.
 #include <cstdint>
 #include <vector>
 

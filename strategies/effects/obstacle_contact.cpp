@@ -28,13 +28,7 @@ class ObstacleContact final : public Effect {
         const auto i = std::size_t(v);
         if (setup.inv_mass[i] == 0) continue;
         Vec3& p = s.p[i];
-        Vec3 centre = a;
-        if (ob.shape == SimObstacle::Shape::capsule) {
-          const Vec3 ab = b - a;
-          const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
-          centre = a + t * ab;
-        }
-        const Vec3 d = p - centre;
+        const Vec3 d = p - SimObstacle::nearest_on_axis(p, a, ob.shape == SimObstacle::Shape::capsule ? b : a);
         const double dist = d.norm();
         if (dist >= reach || dist < 1e-12) continue;
         const Vec3 normal = d / dist;

@@ -1,7 +1,7 @@
 // Rigid impact zones, ccd_contact's last resort: a sheet driven through another comes out of the rounds with no
 // contact left, every zone moved rigidly and the free vertices' linear momentum kept; a zone that holds a
 // scripted vertex moves with it; a zone holding two different scripted motions is counted as pinched, and each
-// of its free vertices follows the nearest scripted vertex.
+// of its free vertices follows the nearest scripted vertex whose motion keeps it outside the obstacles' shapes.
 #include <gtest/gtest.h>
 
 #include "framework/pipeline/ccd_pipeline.hpp"
@@ -118,6 +118,17 @@ TEST(ImpactZones, TwoScriptedMotionsInOneZoneCountAsPinchedAndEachVertexFollowsT
   EXPECT_EQ(s.state.p[1], s.state.x[1] + down) << "vertex 1 follows vertex 0, the nearer";
   EXPECT_EQ(s.state.p[3], s.state.x[3] + up) << "vertex 3 follows vertex 4";
   EXPECT_EQ(s.state.p[2], s.state.x[2]) << "vertex 2 is in no zone";
+
+  // A sphere where vertex 0's motion would carry vertex 1: vertex 1 follows vertex 4 instead.
+  SimObstacle ball;
+  ball.shape = SimObstacle::Shape::sphere;
+  ball.a = s.state.x[1] + down;
+  ball.radius = 0.005;
+  s.setup.obstacles.push_back(ball);
+  s.state.p[1] = s.state.x[1];
+  zones.move(s.setup, s.state, dt);
+  EXPECT_EQ(s.state.p[1], s.state.x[1] + up) << "the nearer motion would carry vertex 1 into the sphere";
+  EXPECT_EQ(s.state.p[3], s.state.x[3] + up);
 }
 
 }  // namespace
