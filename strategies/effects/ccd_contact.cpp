@@ -67,10 +67,16 @@ class CcdContact final : public Effect {
   }
 
   [[nodiscard]] nlohmann::json stats() const override {
-    return {{"ccd_steps", ccd_steps_},       {"self_passes", self_passes_},
-            {"obstacle_passes", obstacle_passes_}, {"zone_contacts", zone_contacts_},
-            {"zones_moved", zones_.zones_moved}, {"largest_zone", zones_.largest_zone}, {"most_rounds", zones_.most_rounds}, {"escalated", zones_.escalated},
-            {"pinched_zones", zones_.pinched_zones}, {"unresolved", unresolved_}};
+    return {{"ccd_steps", ccd_steps_},
+            {"self_passes", self_passes_},
+            {"obstacle_passes", obstacle_passes_},
+            {"zone_contacts", zone_contacts_},
+            {"zones_moved", zones_.zones_moved},
+            {"largest_zone", zones_.largest_zone},
+            {"most_rounds", zones_.most_rounds},
+            {"escalated", zones_.escalated},
+            {"pinched_zones", zones_.pinched_zones},
+            {"unresolved", unresolved_}};
   }
 
  private:
