@@ -6,16 +6,20 @@
 //   normal, velocities taken as constant) gets an inelastic impulse that keeps it that far apart (Bridson,
 //   Fedkiw & Anderson 2002, velocity filtering); positions p = x + dt·v are updated and the CCD runs again,
 //   until no contact needs an impulse.
-// Then the last resort, rigid impact zones (impact_zones.hpp): the motion runs through a second pipeline with
-// zero thickness — any contact there is a true touch or crossing — and the vertices of each contact join a zone
-// that moves rigidly (with its momentum, or with the scripted motion it holds), round after round until none is
-// left. The frame at t was free of crossings and rigid motion keeps it so; what is left (pinched zones, or the
-// round bound) is counted (`unresolved`), never hidden.
+// Then the motion runs through a second pipeline with zero thickness — any contact there is a true touch or
+// crossing — and every such contact becomes a constraint of an inelastic projection (inelastic_projection.hpp,
+// Harmon et al. 2008), which treats them all at once: cloth held by two obstacles that move differently (a
+// knee) is pushed out of both. What it leaves after kProjectionRounds goes to the last resort, rigid impact
+// zones (impact_zones.hpp): the vertices of each contact join a zone that moves rigidly (with its momentum, or
+// with the scripted motion it holds), round after round until none is left. The frame at t was free of
+// crossings and rigid motion keeps it so; what is left (pinched zones, or the round bound) is counted
+// (`unresolved`), never hidden.
 #include <algorithm>
 
 #include "framework/pipeline/ccd_pipeline.hpp"
 #include "strategies/effects/effects.hpp"
 #include "strategies/effects/impact_zones.hpp"
+#include "strategies/effects/inelastic_projection.hpp"
 #include "strategies/registry.hpp"
 
 namespace ccdlab {
@@ -57,9 +61,13 @@ class CcdContact final : public Effect {
       for (std::size_t i = 0; i < s.p.size(); ++i)
         if (setup.inv_mass[i] > 0) s.p[i] = s.x[i] + dt * s.v[i];
     }
-    // Last resort: rigid impact zones (impact_zones.hpp) on the motion checked with zero thickness — any
-    // contact there is a true touch or crossing — until none is left or no round can merge anything new.
-    const ImpactZones::Outcome zoned = zones_.resolve(*crossing_, setup, s, dt, kZoneRounds);
+    // The motion checked with zero thickness — any contact there is a true touch or crossing: first every such
+    // contact at once, by inelastic projection (inelastic_projection.hpp); what that leaves, by rigid impact
+    // zones (impact_zones.hpp), until none is left or no round can merge anything new.
+    const InelasticProjection::Outcome projected = projection_.resolve(*crossing_, setup, s, dt, gap(setup), kProjectionRounds);
+    count_passes(*crossing_, projected.detections);
+    if (projected.left.empty()) return resolved;
+    const ImpactZones::Outcome zoned = zones_.resolve(*crossing_, setup, s, dt, kZoneRounds, &projected.left);
     count_passes(*crossing_, zoned.detections);
     zone_contacts_ += zoned.handled;
     unresolved_ += zoned.left;
@@ -70,48 +78,42 @@ class CcdContact final : public Effect {
     return {{"ccd_steps", ccd_steps_},
             {"self_passes", self_passes_},
             {"obstacle_passes", obstacle_passes_},
+            {"projection_rows", projection_.rows},
+            {"projection_solves", projection_.solves},
+            {"projection_sweeps", projection_.sweeps},
+            {"projection_unconverged", projection_.unconverged},
+            {"projection_resolved", projection_.resolved},
             {"zone_contacts", zone_contacts_},
             {"zones_moved", zones_.zones_moved},
             {"largest_zone", zones_.largest_zone},
             {"most_rounds", zones_.most_rounds},
             {"escalated", zones_.escalated},
+            {"whole_bodies", zones_.whole_bodies},
             {"pinched_zones", zones_.pinched_zones},
             {"unresolved", unresolved_}};
   }
 
  private:
-  /// One contact's impulse. Weights w give the relative position of the features: VF vertex − face point,
-  /// EE point on a − point on b; the normal is oriented so that the separation at t is positive.
-  /// Applies the contact's impulse if it needs one; returns 1 if it did.
+  /// One contact's impulse, if it needs one (returns 1 if it did): the contact's row (inelastic_projection.hpp)
+  /// asks the features to end the step a tenth of the thickness apart along its normal.
   std::uint64_t respond(const SimSetup& setup, SimState& s, const Contact& c, double dt) const {
-    std::array<double, 4> w{};
-    const auto [u, t] = c.coords;
-    if (c.kind == ContactKind::vf) w = {1, -(1 - u - t), -u, -t};
-    else w = {1 - u, u, -(1 - t), -t};
-    Vec3 n = contact_normal(c, s.x, s.p);
-    if (n.squaredNorm() == 0) return 0;
-    double d0 = 0, vn = 0, mass = 0;
-    for (int k = 0; k < 4; ++k) {
-      const auto i = std::size_t(c.vertices[std::size_t(k)]);
-      d0 += w[std::size_t(k)] * s.x[i].dot(n);
-      mass += w[std::size_t(k)] * w[std::size_t(k)] * setup.inv_mass[i];
-    }
-    if (d0 < 0) n = -n, d0 = -d0;
-    for (int k = 0; k < 4; ++k) vn += w[std::size_t(k)] * s.v[std::size_t(c.vertices[std::size_t(k)])].dot(n);
-    const double target = (0.1 * std::max(setup.thickness, 1e-9) - d0) / dt;  // end the step ≥ thickness/10 apart
-    if (vn >= target || mass == 0) return 0;
-    const double j = (target - vn) / mass;
-    for (int k = 0; k < 4; ++k) {
-      const auto i = std::size_t(c.vertices[std::size_t(k)]);
-      s.v[i] += j * w[std::size_t(k)] * setup.inv_mass[i] * n;
-    }
+    const ContactRow row = contact_row(c, setup, s, dt, gap(setup));
+    if (row.n.squaredNorm() == 0 || row.mass == 0) return 0;
+    const double vn = row.normal_velocity(s.v);
+    if (vn >= row.target) return 0;
+    row.apply(setup, s.v, (row.target - vn) / row.mass);
     return 1;
   }
+  /// The separation every response aims for: a tenth of the thickness (so that the next sub-step's inflated
+  /// CCD still sees the pair, and its impulse keeps it there).
+  static double gap(const SimSetup& setup) { return 0.1 * std::max(setup.thickness, 1e-9); }
 
-  static constexpr int kZoneRounds = 64;  ///< zones only grow: a bound, seldom reached
+  static constexpr int kProjectionRounds = 8;  ///< solves before the zones take over
+  static constexpr int kZoneRounds = 64;       ///< zones only grow: a bound, seldom reached
   Params p_;
   std::unique_ptr<CcdPipeline> pipeline_;  ///< thickness-inflated: contacts to respond to
   std::unique_ptr<CcdPipeline> crossing_;  ///< zero thickness: true touches and crossings (impact zones)
+  InelasticProjection projection_;
   ImpactZones zones_;
   std::uint64_t unresolved_ = 0;     ///< contacts left after the impact zones, summed over sub-steps
   std::uint64_t zone_contacts_ = 0;  ///< contacts handed to the impact zones, summed over rounds

@@ -18,26 +18,63 @@ void ImpactZones::reset(std::size_t vertices) {
 }
 
 ImpactZones::Outcome ImpactZones::resolve(CcdPipeline& crossing, const SimSetup& setup, SimState& s, double dt,
-                                           int max_rounds) {
+                                           int max_rounds, const std::vector<Contact>* found) {
   reset(s.p.size());
   inelastic_ = false;
   Outcome out;
+  StepResult r;
+  int moves = 0;
   for (int round = 0;; ++round) {  // the last detection checks the last move
-    const StepResult r = crossing.step(s.x, s.p);
-    ++out.detections;
+    if (round == 0 && found != nullptr) {
+      r.contacts = *found;
+    } else {
+      r = crossing.step(s.x, s.p);
+      ++out.detections;
+    }
     out.left = r.contacts.size();
+    if (out.left == 0 || round == max_rounds) break;
     // Contacts that keep cascading (a zone's motion runs into more cloth, round after round) escalate: from
     // round kEscalate on, everything in contact merges into one zone, so the zone grows by all of it at once.
     // Escalated zones also give up their momentum: a zone without scripted vertices stops for the sub-step (an
-    // inelastic impact — still a rigid motion), so it cannot run into more cloth.
-    if (out.left == 0 || round == max_rounds || merge(r.contacts, round >= kEscalate) == 0) break;
+    // inelastic impact — still a rigid motion), so it cannot run into more cloth. From round kWholeBodies on,
+    // the zone takes in every vertex of each cloth body it touches: a cloth turning with a spinning ball then
+    // turns with it whole, instead of sweeping into the rest of itself round after round — with one scripted
+    // motion in the zone (or none), the next round finds no contact.
+    const bool into_one = round >= kEscalate;
+    std::size_t joined = merge(r.contacts, into_one);
+    if (round >= kWholeBodies) joined += merge_bodies(setup, r.contacts);
+    if (joined == 0) break;
     escalated += round == kEscalate;
-    inelastic_ = round >= kEscalate;
+    whole_bodies += round == kWholeBodies;
+    inelastic_ = into_one;
     out.handled += out.left;
     move(setup, s, dt);
+    ++moves;
   }
-  most_rounds = std::max<std::uint64_t>(most_rounds, std::uint64_t(out.detections - 1));
+  most_rounds = std::max<std::uint64_t>(most_rounds, std::uint64_t(moves));
   return out;
+}
+
+std::size_t ImpactZones::merge_bodies(const SimSetup& setup, const std::vector<Contact>& contacts) {
+  if (contacts.empty()) return 0;
+  const Index root = find(contacts.front().vertices[0]);
+  std::size_t joined = 0;
+  for (const Body& b : setup.bodies) {
+    if (b.kind != BodyKind::cloth) continue;
+    const bool touched = std::any_of(contacts.begin(), contacts.end(), [&](const Contact& c) {
+      return std::any_of(c.vertices.begin(), c.vertices.end(), [&](Index v) { return v >= b.vertex_begin && v < b.vertex_end; });
+    });
+    if (!touched) continue;
+    for (Index v = b.vertex_begin; v < b.vertex_end; ++v) {
+      Index a = find(root), other = find(v);
+      if (a == other) continue;
+      if (other < a) std::swap(a, other);
+      parent_[std::size_t(other)] = a;
+      ++joined;
+    }
+  }
+  refresh_members();
+  return joined;
 }
 
 Index ImpactZones::find(Index v) {
@@ -62,13 +99,17 @@ std::size_t ImpactZones::merge(const std::vector<Contact>& contacts, bool into_o
     }
     if (new_zone) ++joined;
   }
+  refresh_members();
+  return joined;
+}
+
+void ImpactZones::refresh_members() {
   // The zones' members: every vertex that is not its own root, and the roots of those.
   touched_.clear();
   for (std::size_t v = 0; v < parent_.size(); ++v)
     if (parent_[v] != Index(v)) touched_.push_back(Index(v)), touched_.push_back(find(Index(v)));
   std::sort(touched_.begin(), touched_.end());
   touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
-  return joined;
 }
 
 namespace {

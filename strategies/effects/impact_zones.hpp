@@ -12,7 +12,9 @@
 // zone moving with the scripted motion it holds. When contacts keep cascading (a falling zone runs into more
 // cloth, round after round), the rounds escalate: everything in contact merges into one zone at once, and
 // zones without scripted vertices stop for the sub-step (an inelastic impact, still rigid) instead of carrying
-// their momentum into more cloth.
+// their momentum into more cloth; later still, the zone takes in the whole of every cloth body it touches (a
+// sheet wound round a spinning ball turns with the ball for the sub-step: with one scripted motion, no contact
+// can be left).
 // The one case rigid motion cannot resolve: a zone holding scripted vertices whose motions differ (cloth that
 // touches two obstacles moving differently: draped over a knee, or pinched in the crease of a joint). Such a
 // zone is counted as `pinched`, and each of its free vertices follows, of the scripted vertices nearest first,
@@ -36,8 +38,10 @@ class ImpactZones {
     int detections = 0;        ///< CCD steps run (one per round, and the final check)
   };
   /// The whole last resort for one sub-step: detect x → p with `crossing` (zero thickness), merge, move, until
-  /// no contact is left, none can be merged, or `max_rounds` rounds ran.
-  Outcome resolve(CcdPipeline& crossing, const SimSetup& setup, SimState& s, double dt, int max_rounds);
+  /// no contact is left, none can be merged, or `max_rounds` rounds ran. `found`: the contacts of the current
+  /// motion when the caller has just detected them (the first detection is then skipped).
+  Outcome resolve(CcdPipeline& crossing, const SimSetup& setup, SimState& s, double dt, int max_rounds,
+                  const std::vector<Contact>* found = nullptr);
 
   /// Forgets every zone (each sub-step starts with single vertices).
   void reset(std::size_t vertices);
@@ -45,6 +49,9 @@ class ImpactZones {
   /// zone). Returns how many contacts joined different zones: 0 means every contact lies inside one rigidly
   /// moving zone already, and another round cannot help.
   std::size_t merge(const std::vector<Contact>& contacts, bool into_one = false);
+  /// Merges every vertex of each cloth body that a contact touches into the first contact's zone (the last
+  /// escalation). Returns how many vertices joined.
+  std::size_t merge_bodies(const SimSetup& setup, const std::vector<Contact>& contacts);
   /// Moves every zone of two or more vertices rigidly over the sub-step (p and v of its free vertices).
   void move(const SimSetup& setup, SimState& s, double dt);
 
@@ -56,10 +63,13 @@ class ImpactZones {
   std::uint64_t most_rounds = 0;     ///< the most merge-and-move rounds one sub-step needed
   std::uint64_t escalated = 0;       ///< sub-steps that reached kEscalate rounds (all contacts into one zone)
   static constexpr int kEscalate = 8;
+  std::uint64_t whole_bodies = 0;    ///< sub-steps that reached kWholeBodies rounds (whole cloth bodies join)
+  static constexpr int kWholeBodies = 16;
   std::uint64_t pinched_zones = 0;   ///< zone moves whose scripted vertices disagree on their motion
 
  private:
   Index find(Index v);
+  void refresh_members();  ///< touched_ from parent_
   std::vector<Index> parent_;
   bool inelastic_ = false;      ///< escalated: zones without scripted vertices stop instead of keeping momentum
   std::vector<Index> touched_;  ///< vertices merged at least once this sub-step (the zones' members)
