@@ -42,6 +42,13 @@ def test_simulate_writes_frames_meta_and_caches(tmp_path):
     assert again.returncode == 0 and "cached" in again.stdout
     # The thread count is not part of the cache key: frames do not depend on it.
     assert "cached" in simulate(*args[:-3], "threads=1", "--out", str(out)).stdout
+    assert "warning" not in again.stderr, "made by this revision: no warning"
+    # Frames of another revision are reused (the key is the scene), with a warning naming both revisions.
+    meta["git_revision"] = "0123456789ab"
+    (out / "meta.json").write_text(json.dumps(meta))
+    stale = simulate(*args)
+    assert stale.returncode == 0 and "cached" in stale.stdout
+    assert "warning" in stale.stderr and "0123456789ab" in stale.stderr and "--force" in stale.stderr
     forced = simulate(*args, "--force")
     assert forced.returncode == 0 and "cached" not in forced.stdout
 

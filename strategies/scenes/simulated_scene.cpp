@@ -26,6 +26,11 @@ std::string simulate_to_folder(const SimulateRequest& o, bool print) {
       const nlohmann::json meta = nlohmann::json::parse(read_file(meta_path.string()));
       if (meta.value("scene_hash", "") == hash && meta.value("complete", false)) {
         if (print) fmt::print("ccdlab simulate {}: cached in {}/ (scene hash {}); --force simulates again\n", scene.name, out, hash);
+        // The key is the scene, not the simulator: frames of another revision are reused — say so, every time.
+        const std::string made_by = meta.value("git_revision", "?");
+        if (made_by != build_info::git_revision)
+          fmt::print(stderr, "ccdlab: warning: {}/ holds frames simulated by revision {}, not by this one ({}); "
+                     "--force simulates them again\n", out, made_by, build_info::git_revision);
         return out;
       }
     } catch (const nlohmann::json::exception&) {
