@@ -64,7 +64,8 @@ class CcdContact final : public Effect {
     // The motion checked with zero thickness — any contact there is a true touch or crossing: first every such
     // contact at once, by inelastic projection (inelastic_projection.hpp); what that leaves, by rigid impact
     // zones (impact_zones.hpp), until none is left or no round can merge anything new.
-    const InelasticProjection::Outcome projected = projection_.resolve(*crossing_, setup, s, dt, gap(setup), kProjectionRounds);
+    const InelasticProjection::Outcome projected =
+        projection_.resolve(*crossing_, setup, s, dt, gap(setup), kProjectionRounds);
     count_passes(*crossing_, projected.detections);
     if (projected.left.empty()) return resolved;
     const ImpactZones::Outcome zoned = zones_.resolve(*crossing_, setup, s, dt, kZoneRounds, &projected.left);

@@ -62,7 +62,8 @@ std::size_t ImpactZones::merge_bodies(const SimSetup& setup, const std::vector<C
   for (const Body& b : setup.bodies) {
     if (b.kind != BodyKind::cloth) continue;
     const bool touched = std::any_of(contacts.begin(), contacts.end(), [&](const Contact& c) {
-      return std::any_of(c.vertices.begin(), c.vertices.end(), [&](Index v) { return v >= b.vertex_begin && v < b.vertex_end; });
+      return std::any_of(c.vertices.begin(), c.vertices.end(),
+                         [&](Index v) { return v >= b.vertex_begin && v < b.vertex_end; });
     });
     if (!touched) continue;
     for (Index v = b.vertex_begin; v < b.vertex_end; ++v) {

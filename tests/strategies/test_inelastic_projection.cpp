@@ -103,7 +103,8 @@ TEST(InelasticProjection, AContactRowAsksForTheGapAlongTheNormal) {
   CcdPipeline crossing = s.crossing();
   const StepResult r = crossing.step(s.state.x, s.state.p);
   const auto vf = std::find_if(r.contacts.begin(), r.contacts.end(), [](const Contact& c) {
-    return c.kind == ContactKind::vf && c.vertices[0] == 0 && c.feature_b >= 3 && c.feature_b < 11;  // floor faces: 3–10
+    // Floor faces are 3–10 (after the strip's 2 and the loose triangle).
+    return c.kind == ContactKind::vf && c.vertices[0] == 0 && c.feature_b >= 3 && c.feature_b < 11;
   });
   ASSERT_NE(vf, r.contacts.end());
   const ContactRow row = contact_row(*vf, s.setup, s.state, Corner::dt, Corner::gap);
