@@ -35,7 +35,7 @@ ContactRow contact_row(const Contact& c, const SimSetup& setup, const SimState& 
   return row;
 }
 
-bool InelasticProjection::solve(const SimSetup& setup, SimState& s, double tolerance) {
+void InelasticProjection::solve(const SimSetup& setup, SimState& s, double tolerance) {
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
     ++sweeps;
     double largest = 0;  // the largest change of a row's normal velocity in this sweep
@@ -47,10 +47,9 @@ bool InelasticProjection::solve(const SimSetup& setup, SimState& s, double toler
       row.apply(setup, s.v, dj);
       largest = std::max(largest, std::abs(dj) * row.mass);
     }
-    if (largest <= tolerance) return true;
+    if (largest <= tolerance) return;
   }
   ++unconverged;
-  return false;
 }
 
 InelasticProjection::Outcome InelasticProjection::resolve(CcdPipeline& crossing, const SimSetup& setup, SimState& s,

@@ -49,20 +49,21 @@ class InelasticProjection {
     std::vector<Contact> left;  ///< contacts still found after the last round (for the impact zones)
     int detections = 0;         ///< CCD steps run
   };
-  /// Detects x → p with `crossing` (zero thickness), adds a row per new contact, projects, updates p, until no
+  /// Detects x → p with `crossing` (zero thickness), adds a row per contact found, projects, updates p, until no
   /// contact is left or `max_rounds` solves ran. Rows end each sub-step `gap` apart.
   Outcome resolve(CcdPipeline& crossing, const SimSetup& setup, SimState& s, double dt, double gap, int max_rounds);
 
   std::uint64_t rows = 0;          ///< constraint rows, summed over sub-steps
   std::uint64_t solves = 0;        ///< projections solved (one per round)
   std::uint64_t sweeps = 0;        ///< Gauss–Seidel sweeps, summed
-  std::uint64_t unconverged = 0;   ///< solves that ended at kMaxSweeps (infeasible or slow: the zones follow)
+  std::uint64_t unconverged = 0;   ///< solves that ended at kMaxSweeps (the next detection decides)
   std::uint64_t resolved = 0;      ///< sub-steps with contacts that the projection left free of contacts
   static constexpr int kMaxSweeps = 200;
 
  private:
-  /// Projected Gauss–Seidel over every row; returns whether it converged.
-  bool solve(const SimSetup& setup, SimState& s, double tolerance);
+  /// Projected Gauss–Seidel over every row, until no row's normal velocity changes by more than `tolerance`
+  /// in a sweep or kMaxSweeps ran (counted in `unconverged`).
+  void solve(const SimSetup& setup, SimState& s, double tolerance);
   std::vector<ContactRow> rows_;  ///< every contact found this sub-step, one row per round it was found in
 };
 
