@@ -6,12 +6,13 @@
 
 #include "framework/narrow/plane_filter.hpp"
 #include "framework/primitive/feature_pairs.hpp"
+#include "framework/util/uninitialized_vector.hpp"
 
 namespace ccdlab {
 
 struct FeatureBatch {
-  std::vector<VertexFacePair> vf;
-  std::vector<EdgeEdgePair> ee;
+  UninitializedVector<VertexFacePair> vf;  // gather grows them by the most a chunk can append, then trims
+  UninitializedVector<EdgeEdgePair> ee;
   void clear() {
     vf.clear();
     ee.clear();

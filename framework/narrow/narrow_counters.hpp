@@ -13,7 +13,7 @@ struct NarrowCounters {
   std::uint64_t orphans_culled = 0;  ///< orphan pairs inside a patch skipped by normal-cone culling
   std::uint64_t kdop_culled = 0;     ///< pairs whose swept feature 26-DOPs are disjoint (stage 1, every mode)
   std::uint64_t plane_culled = 0;    ///< pairs proven to stay off each other's plane/line (stage 2, batched only)
-  std::uint64_t split_culled = 0;    ///< pairs proven apart on every quarter of the step (stage 3, batched only)
+  std::uint64_t split_culled = 0;    ///< pairs proven apart on every half or sixteenth of the step (stage 3, batched only)
   std::uint64_t vf_tests = 0;        ///< elementary VF tests run (survivors of the culling stages)
   std::uint64_t ee_tests = 0;        ///< elementary EE tests run
   std::uint64_t orphan_tests = 0;    ///< of the VF + EE tests, those from the orphan set

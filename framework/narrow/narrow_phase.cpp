@@ -23,11 +23,23 @@ bool counted(const CcdHit& hit, std::uint64_t& tests, std::uint64_t& contacts, N
   return hit.hit;
 }
 
-/// Keeps the pairs whose keep flag is set (VF flags first, then EE), in order.
+/// Keeps the pairs whose keep flag is set, in order. Branch-free: the flags are close to random, and a
+/// mispredicted branch per pair cost more than the stage that set them (perf, n-body).
+template <class Pairs>
+void compact(Pairs& pairs, const std::uint8_t* keep) {
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    pairs[j] = pairs[i];
+    j += keep[i];
+  }
+  pairs.resize(j);
+}
+
+/// VF flags first, then EE.
 void compact(FeatureBatch& batch, const std::vector<std::uint8_t>& keep) {
-  std::size_t i = 0;
-  std::erase_if(batch.vf, [&](const VertexFacePair&) { return !keep[i++]; });
-  std::erase_if(batch.ee, [&](const EdgeEdgePair&) { return !keep[i++]; });
+  const std::size_t nvf = batch.vf.size();
+  compact(batch.vf, keep.data());
+  compact(batch.ee, keep.data() + nvf);
 }
 
 }  // namespace
@@ -47,10 +59,7 @@ void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, int t
 }
 
 void NarrowPhase::gather(std::span<const FacePair> candidates, FeatureBatch& batch) const {
-  for (const FacePair& p : candidates)
-    reps_.for_each_pair(
-        p.a, p.b, [&](Index v, Index f) { batch.vf.push_back({v, f}); },
-        [&](Index a, Index b) { batch.ee.push_back({a, b}); });
+  reps_.append_pairs(candidates, batch.vf, batch.ee);
 }
 
 VertexFaceQuery NarrowPhase::vf_query(Index v, Index f) const {
@@ -133,16 +142,23 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   }
   scratch.keep.resize(n);
   plane_filter(plane, reach, scratch.keep.data());
-  compact(batch, scratch.keep);
   plane.compact(scratch.keep.data());
+  compact(batch, scratch.keep);
   const std::size_t plane_kept = batch.vf.size() + batch.ee.size();
   c.plane_culled += n - plane_kept;
   const auto t_split = Clock::now();
   c.plane_ns += ns_since(t);
-  // Stage 3 on stage 2's survivors, from the coefficients, threshold and reach stage 2 left in the rows.
+  // Stage 3 on stage 2's survivors, from the coefficients, threshold and reach stage 2 left in the rows: halves,
+  // then sixteenths on what the halves keep (split_filter.hpp).
   scratch.keep.assign(plane_kept, 1);
-  split_filter(plane, 0, batch.vf.size(), true, scratch.keep.data());
-  split_filter(plane, batch.vf.size(), plane_kept, false, scratch.keep.data());
+  split_filter(plane, 0, batch.vf.size(), true, scratch.keep.data(), kSplitCoarseLevels);
+  split_filter(plane, batch.vf.size(), plane_kept, false, scratch.keep.data(), kSplitCoarseLevels);
+  plane.compact(scratch.keep.data());
+  compact(batch, scratch.keep);
+  const std::size_t halves_kept = batch.vf.size() + batch.ee.size();
+  scratch.keep.assign(halves_kept, 1);
+  split_filter(plane, 0, batch.vf.size(), true, scratch.keep.data(), kSplitLevels);
+  split_filter(plane, batch.vf.size(), halves_kept, false, scratch.keep.data(), kSplitLevels);
   compact(batch, scratch.keep);
   c.split_culled += plane_kept - batch.vf.size() - batch.ee.size();
   c.split_ns += ns_since(t_split);

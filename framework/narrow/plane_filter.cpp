@@ -11,14 +11,17 @@ namespace ccdlab {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-template <class D, class V>
-HWY_INLINE V det3(D, V xx, V xy, V xz, V yx, V yy, V yz, V zx, V zy, V zz) {
-  // X·(Y×Z)
-  const V cx = hn::Sub(hn::Mul(yy, zz), hn::Mul(yz, zy));
-  const V cy = hn::Sub(hn::Mul(yz, zx), hn::Mul(yx, zz));
-  const V cz = hn::Sub(hn::Mul(yx, zy), hn::Mul(yy, zx));
-  return hn::Add(hn::Add(hn::Mul(xx, cx), hn::Mul(xy, cy)), hn::Mul(xz, cz));
-}
+/// Y×Z, componentwise.
+template <class V>
+struct Cross {
+  V x, y, z;
+  HWY_INLINE Cross(V yx, V yy, V yz, V zx, V zy, V zz)
+      : x(hn::Sub(hn::Mul(yy, zz), hn::Mul(yz, zy))),
+        y(hn::Sub(hn::Mul(yz, zx), hn::Mul(yx, zz))),
+        z(hn::Sub(hn::Mul(yx, zy), hn::Mul(yy, zx))) {}
+  /// X·(Y×Z): the same operations, in the same order, as plane_filter_keeps' det.
+  HWY_INLINE V dot(V xx, V xy, V xz) const { return hn::Add(hn::Add(hn::Mul(xx, x), hn::Mul(xy, y)), hn::Mul(xz, z)); }
+};
 
 void PlaneFilter(const double* const* col, double* const* out, std::size_t n, double abs_reach, double rel_reach,
                  std::uint8_t* keep) {
@@ -37,15 +40,13 @@ void PlaneFilter(const double* const* col, double* const* out, std::size_t n, do
     const V c0x = load(PlaneBatch::C0x), c0y = load(PlaneBatch::C0y), c0z = load(PlaneBatch::C0z);
     const V c1x = load(PlaneBatch::C1x), c1y = load(PlaneBatch::C1y), c1z = load(PlaneBatch::C1z);
     const V dx = load(PlaneBatch::Dx), dy = load(PlaneBatch::Dy), dz = load(PlaneBatch::Dz);
-    // Bernstein coefficients (times 1 and 3).
-    const V q0 = det3(d, a0x, a0y, a0z, b0x, b0y, b0z, c0x, c0y, c0z);
-    const V q3 = det3(d, a1x, a1y, a1z, b1x, b1y, b1z, c1x, c1y, c1z);
-    const V q1 = hn::Add(hn::Add(det3(d, a1x, a1y, a1z, b0x, b0y, b0z, c0x, c0y, c0z),
-                                 det3(d, a0x, a0y, a0z, b1x, b1y, b1z, c0x, c0y, c0z)),
-                         det3(d, a0x, a0y, a0z, b0x, b0y, b0z, c1x, c1y, c1z));
-    const V q2 = hn::Add(hn::Add(det3(d, a0x, a0y, a0z, b1x, b1y, b1z, c1x, c1y, c1z),
-                                 det3(d, a1x, a1y, a1z, b0x, b0y, b0z, c1x, c1y, c1z)),
-                         det3(d, a1x, a1y, a1z, b1x, b1y, b1z, c0x, c0y, c0z));
+    // Bernstein coefficients (times 1 and 3): eight triple products over four cross products.
+    const Cross<V> b0c0(b0x, b0y, b0z, c0x, c0y, c0z), b1c1(b1x, b1y, b1z, c1x, c1y, c1z);
+    const Cross<V> b1c0(b1x, b1y, b1z, c0x, c0y, c0z), b0c1(b0x, b0y, b0z, c1x, c1y, c1z);
+    const V q0 = b0c0.dot(a0x, a0y, a0z);
+    const V q3 = b1c1.dot(a1x, a1y, a1z);
+    const V q1 = hn::Add(hn::Add(b0c0.dot(a1x, a1y, a1z), b1c0.dot(a0x, a0y, a0z)), b0c1.dot(a0x, a0y, a0z));
+    const V q2 = hn::Add(hn::Add(b1c1.dot(a0x, a0y, a0z), b0c1.dot(a1x, a1y, a1z)), b1c0.dot(a1x, a1y, a1z));
     // Threshold: reach·B̄·C̄ plus the forward error bound.
     auto norm1 = [&](V x, V y, V z) { return hn::Add(hn::Add(hn::Abs(x), hn::Abs(y)), hn::Abs(z)); };
     auto norm2sq = [&](V x, V y, V z) { return hn::Add(hn::Add(hn::Mul(x, x), hn::Mul(y, y)), hn::Mul(z, z)); };
@@ -96,20 +97,31 @@ void PlaneBatch::resize(std::size_t n) {
     c.resize(padded);
     std::fill(c.begin() + std::ptrdiff_t(n), c.end(), 0.0);  // padding rows: zero, kept, never read back
   }
-  for (auto& c : out_) c.resize(padded);
+  for (auto& c : out_) {
+    c.resize(padded);
+    std::fill(c.begin() + std::ptrdiff_t(n), c.end(), 0.0);  // stage 3 may load a vector's worth past the end
+  }
 }
 
 std::size_t PlaneBatch::compact(const std::uint8_t* keep) {
-  // The kept rows' indices once, then each column gathered forward in place (index j ≤ kept[j]).
-  kept_.clear();
-  for (std::size_t i = 0; i < size_; ++i)
-    if (keep[i]) kept_.push_back(i);
-  auto squeeze = [&](std::vector<double>& c) {
-    for (std::size_t j = 0; j < kept_.size(); ++j) c[j] = c[kept_[j]];
-  };
-  for (auto& c : col_) squeeze(c);
-  for (auto& c : out_) squeeze(c);
-  size_ = kept_.size();
+  // The kept rows' indices once, then the rows moved forward in place (index j ≤ kept[j]).
+  kept_.resize(size_);
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < size_; ++i) {  // branch-free: the flags are close to random
+    kept_[n] = i;
+    n += keep[i];
+  }
+  // Row by row, all columns at once (one pass over the indices; the rows before the first dropped one stay).
+  double* cols[kColumns + kResults];
+  for (int c = 0; c < kColumns; ++c) cols[c] = col_[c].data();
+  for (int r = 0; r < kResults; ++r) cols[kColumns + r] = out_[r].data();
+  std::size_t j = 0;
+  while (j < n && kept_[j] == j) ++j;
+  for (; j < n; ++j) {
+    const std::size_t from = kept_[j];
+    for (double* c : cols) c[j] = c[from];
+  }
+  size_ = n;
   return size_;
 }
 

@@ -21,6 +21,7 @@
 
 #include "framework/geometry/vec.hpp"
 #include "framework/primitive/tester.hpp"
+#include "framework/util/uninitialized_vector.hpp"
 
 namespace ccdlab {
 
@@ -55,9 +56,10 @@ class PlaneBatch {
   std::size_t compact(const std::uint8_t* keep);
 
  private:
-  std::array<std::vector<double>, kColumns> col_;
-  std::array<std::vector<double>, kResults> out_;
-  std::vector<std::size_t> kept_;  ///< compact's scratch
+  // Uninitialized on growth: set() writes every row, resize() the padding.
+  std::array<UninitializedVector<double>, kColumns> col_;
+  std::array<UninitializedVector<double>, kResults> out_;
+  UninitializedVector<std::size_t> kept_;  ///< compact's scratch
   std::size_t size_ = 0;
 };
 

@@ -18,6 +18,8 @@
 
 #include "framework/mesh/tri_mesh.hpp"
 #include "framework/primitive/feature_pairs.hpp"
+#include "framework/traversal/candidates.hpp"
+#include "framework/util/uninitialized_vector.hpp"
 
 namespace ccdlab {
 
@@ -39,7 +41,10 @@ class Representatives {
   [[nodiscard]] Index face_of_vertex(Index v) const;
   [[nodiscard]] Index face_of_edge(Index e) const;
 
-  /// Appends the feature pairs that the non-adjacent candidate (fa, fb) represents.
+  /// Appends the feature pairs that the non-adjacent candidates represent, candidate by candidate.
+  void append_pairs(std::span<const FacePair> candidates, UninitializedVector<VertexFacePair>& vf,
+                    UninitializedVector<EdgeEdgePair>& ee) const;
+  /// The feature pairs that the non-adjacent candidate (fa, fb) represents (the reference append_pairs follows).
   template <class OnVf, class OnEe>
   void for_each_pair(Index fa, Index fb, OnVf&& on_vf, OnEe&& on_ee) const;
 

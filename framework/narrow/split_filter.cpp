@@ -10,8 +10,7 @@
 #ifndef CCDLAB_SPLIT_FILTER_CONSTANTS
 #define CCDLAB_SPLIT_FILTER_CONSTANTS
 namespace ccdlab::split_detail {
-constexpr int kLevels = 4;                 // 2^4 = 16 windows
-constexpr int kWindows = 1 << kLevels;
+constexpr int kMaxWindows = 1 << kSplitLevels;
 constexpr double kU = 0x1p-53;
 constexpr double kCoefSlack = 18 * kU;     // ÷3 and four halvings, relative to max|b|
 constexpr double kThresholdSlack = 1 + 4 * kU;
@@ -25,9 +24,10 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 using namespace split_detail;
 
-template <bool kVf>
+template <bool kVf, int kLevels>
 void SplitRange(const double* const* col, const double* const* res, std::size_t begin, std::size_t end,
                 std::uint8_t* keep) {
+  constexpr int kWindows = 1 << kLevels;
   const hn::ScalableTag<double> d;
   using V = hn::Vec<decltype(d)>;
   const std::size_t N = hn::Lanes(d);
@@ -102,9 +102,14 @@ void SplitRange(const double* const* col, const double* const* res, std::size_t 
 }
 
 void SplitFilter(const double* const* col, const double* const* res, std::size_t begin, std::size_t end, bool vf,
-                 std::uint8_t* keep) {
-  if (vf) SplitRange<true>(col, res, begin, end, keep);
-  else SplitRange<false>(col, res, begin, end, keep);
+                 int levels, std::uint8_t* keep) {
+  if (levels == kSplitCoarseLevels) {
+    if (vf) SplitRange<true, kSplitCoarseLevels>(col, res, begin, end, keep);
+    else SplitRange<false, kSplitCoarseLevels>(col, res, begin, end, keep);
+  } else {
+    if (vf) SplitRange<true, kSplitLevels>(col, res, begin, end, keep);
+    else SplitRange<false, kSplitLevels>(col, res, begin, end, keep);
+  }
 }
 
 }  // namespace HWY_NAMESPACE
@@ -115,20 +120,25 @@ HWY_AFTER_NAMESPACE();
 #include <algorithm>
 #include <cmath>
 
+#include "framework/util/error.hpp"
+
 namespace ccdlab {
 
 HWY_EXPORT(SplitFilter);
 
-void split_filter(const PlaneBatch& plane, std::size_t begin, std::size_t end, bool vf, std::uint8_t* keep) {
+void split_filter(const PlaneBatch& plane, std::size_t begin, std::size_t end, bool vf, std::uint8_t* keep,
+                  int levels) {
+  if (levels != kSplitCoarseLevels && levels != kSplitLevels) fail("split_filter: {} levels not compiled", levels);
   const double* cols[PlaneBatch::kColumns];
   for (int c = 0; c < PlaneBatch::kColumns; ++c) cols[c] = plane.column(c);
   const double* res[PlaneBatch::kResults];
   for (int r = 0; r < PlaneBatch::kResults; ++r) res[r] = plane.result_column(r);
-  HWY_DYNAMIC_DISPATCH(SplitFilter)(cols, res, begin, end, vf, keep);
+  HWY_DYNAMIC_DISPATCH(SplitFilter)(cols, res, begin, end, vf, levels, keep);
 }
 
-bool split_filter_keeps(const PlaneBatch& plane, std::size_t i, bool vf) {
+bool split_filter_keeps(const PlaneBatch& plane, std::size_t i, bool vf, int levels) {
   using namespace split_detail;
+  const int windows = 1 << levels;
   auto col = [&](int c) { return plane.column(c)[i]; };
   double p[9], m[9];
   for (int k = 0; k < 3; ++k) {
@@ -143,9 +153,9 @@ bool split_filter_keeps(const PlaneBatch& plane, std::size_t i, bool vf) {
   const double bmax = std::max(std::max(std::abs(b[0]), std::abs(b[1])), std::max(std::abs(b[2]), std::abs(b[3])));
   const double t = plane.result(PlaneBatch::Threshold, i) * kThresholdSlack + kCoefSlack * bmax;
   const double pad = (plane.result(PlaneBatch::Reach, i) * (1 + 1e-12) + kPadSlack * M) + 1e-300;
-  double c[kWindows][4];
+  double c[kMaxWindows][4];
   for (int j = 0; j < 4; ++j) c[0][j] = b[j];
-  for (int level = 0, count = 1; level < kLevels; ++level, count *= 2)
+  for (int level = 0, count = 1; level < levels; ++level, count *= 2)
     for (int w = count - 1; w >= 0; --w) {
       const double b0 = c[w][0], b1 = c[w][1], b2 = c[w][2], b3 = c[w][3];
       const double b01 = 0.5 * (b0 + b1), b12 = 0.5 * (b1 + b2), b23 = 0.5 * (b2 + b3);
@@ -155,8 +165,8 @@ bool split_filter_keeps(const PlaneBatch& plane, std::size_t i, bool vf) {
     }
   double prev[9];
   std::copy(p, p + 9, prev);
-  for (int w = 0; w < kWindows; ++w) {
-    const double s = double(w + 1) / kWindows;
+  for (int w = 0; w < windows; ++w) {
+    const double s = double(w + 1) / windows;
     double next[9];
     for (int k = 0; k < 9; ++k) next[k] = p[k] + s * m[k];
     bool apart = (c[w][0] > t && c[w][1] > t && c[w][2] > t && c[w][3] > t) ||

@@ -108,29 +108,55 @@ TEST(PlaneFilter, NeverDropsAPairTheFloatTesterReports) {
   }
 }
 
+/// n rows of random points in a thin slab: many pairs near contact, many planes crossing.
+PlaneBatch near_contact_rows(std::size_t n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto p = [&]() -> Vec3 { return Vec3(u(rng), u(rng), 0.1 * u(rng)); };
+  PlaneBatch b;
+  b.resize(n);
+  for (std::size_t i = 0; i < n; ++i) b.set(i, p(), p(), p(), p(), p(), p(), p());
+  return b;
+}
+
 TEST(SplitFilter, EverySimdTargetAgreesWithThePlainVersion) {
   // Pairs near contact (stage 2 keeps many of them), at thickness 0 and > 0: stage 3's SIMD kernel against its
   // plain version, VF rows then EE rows as the narrow phase lays them out.
-  std::mt19937 rng(21);
-  std::uniform_real_distribution<double> u(-1, 1);
-  PlaneBatch b;
   const std::size_t n = 4001, nvf = 1777;
-  b.resize(n);
-  auto p = [&]() -> Vec3 { return Vec3(u(rng), u(rng), 0.1 * u(rng)); };
-  for (std::size_t i = 0; i < n; ++i) b.set(i, p(), p(), p(), p(), p(), p(), p());
+  PlaneBatch b = near_contact_rows(n, 21);
   for (CullReach reach : {CullReach{0, 2e-9}, CullReach{0.02, 2e-9}}) {
     std::vector<std::uint8_t> stage2(n);
     plane_filter(b, reach, stage2.data());
-    std::vector<std::uint8_t> expect(n);
-    std::size_t culled = 0;
-    for (std::size_t i = 0; i < n; ++i) culled += !(expect[i] = split_filter_keeps(b, i, i < nvf));
-    EXPECT_GT(culled, n / 10);
-    for_each_simd_target([&](const char* target) {
-      std::vector<std::uint8_t> keep(n, 1);
-      split_filter(b, 0, nvf, true, keep.data());
-      split_filter(b, nvf, n, false, keep.data());
-      EXPECT_EQ(keep, expect) << target;
-    });
+    for (const int levels : {kSplitCoarseLevels, kSplitLevels}) {
+      std::vector<std::uint8_t> expect(n);
+      std::size_t culled = 0;
+      for (std::size_t i = 0; i < n; ++i) culled += !(expect[i] = split_filter_keeps(b, i, i < nvf, levels));
+      EXPECT_GT(culled, n / 10);
+      for_each_simd_target([&](const char* target) {
+        std::vector<std::uint8_t> keep(n, 1);
+        split_filter(b, 0, nvf, true, keep.data(), levels);
+        split_filter(b, nvf, n, false, keep.data(), levels);
+        EXPECT_EQ(keep, expect) << target << " levels " << levels;
+      });
+    }
+  }
+}
+
+TEST(SplitFilter, SixteenthsCullEveryPairTheHalvesCull) {
+  // Running halves before sixteenths must only save work: a pair the halves drop, the sixteenths drop too.
+  const std::size_t n = 20000;
+  PlaneBatch b = near_contact_rows(n, 22);
+  for (CullReach reach : {CullReach{0, 2e-9}, CullReach{0.02, 2e-9}}) {
+    std::vector<std::uint8_t> stage2(n);
+    plane_filter(b, reach, stage2.data());
+    std::size_t halves_culled = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const bool vf = i % 2 == 0;
+      if (split_filter_keeps(b, i, vf, kSplitCoarseLevels)) continue;
+      ++halves_culled;
+      EXPECT_FALSE(split_filter_keeps(b, i, vf, kSplitLevels)) << "row " << i;
+    }
+    EXPECT_GT(halves_culled, n / 10);
   }
 }
 
