@@ -13,6 +13,7 @@
 #include "framework/geometry/kdop.hpp"
 #include "framework/geometry/vec.hpp"
 #include "framework/mesh/tri_mesh.hpp"
+#include "framework/util/parallel.hpp"
 
 namespace ccdlab {
 
@@ -60,13 +61,21 @@ struct BvhTopology {
   mutable RefitPlan plan_;
 };
 
+/// How a build may run: threads for the sub-trees below the top splits, and where to record their costs. The
+/// tree never depends on it.
+struct BuildExecution {
+  int threads = 1;
+  PhaseTrace* trace = nullptr;
+};
+
 /// Builds the tree topology over a set of faces from their bounding boxes (one per face, in the order of
 /// `faces`). Implementations: strategies/builders/.
 class HierarchyBuilder {
  public:
   virtual ~HierarchyBuilder() = default;
   [[nodiscard]] virtual std::string_view name() const = 0;
-  [[nodiscard]] virtual BvhTopology build(std::span<const Index> faces, std::span<const Box3> face_boxes) const = 0;
+  [[nodiscard]] virtual BvhTopology build(std::span<const Index> faces, std::span<const Box3> face_boxes,
+                                          BuildExecution exec = {}) const = 0;
 };
 
 /// Checks the structural invariants (pre-order, parent links, every face in exactly one leaf); throws Error.

@@ -16,9 +16,15 @@ struct BuildItem {
 };
 
 /// Reorders items[begin, end) (size ≥ 2) and returns mid with begin < mid < end: the left child gets
-/// [begin, mid), the right child [mid, end).
+/// [begin, mid), the right child [mid, end). Called concurrently on disjoint ranges: no shared state.
 using SplitRule = std::function<std::size_t(std::span<BuildItem> items)>;
 
-BvhTopology build_top_down(std::span<const Index> faces, std::span<const Box3> face_boxes, const SplitRule& split);
+/// The tree is the same for any exec.threads: a range's node id follows from the split alone (pre-order: the
+/// left child is id + 1, the right child id + 2·(mid − begin), after the left sub-tree's 2·(mid − begin) − 1
+/// nodes). The top splits run level by level, the ranges of a level in parallel, until ranges hold at most
+/// 2,048 faces (or 1/256 of the tree; independent of the thread count, so the task trace is too); those
+/// ranges are then built as whole sub-trees in parallel.
+BvhTopology build_top_down(std::span<const Index> faces, std::span<const Box3> face_boxes, BuildExecution exec,
+                           const SplitRule& split);
 
 }  // namespace ccdlab

@@ -90,7 +90,7 @@ class CcdPipeline {
   };
   /// Rebuilds the degraded sub-trees of every body; returns how many were rebuilt.
   std::uint64_t restructure(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
-  void build_hierarchies(const Positions& x_t0, const Positions& x_t1);
+  void build_hierarchies(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
   void refit_body(BodyState& body, PhaseTrace& trace);
   void refit_wide(BodyState& body, PhaseTrace& trace);
   /// BVTT traversal of every pass and the narrow phase of its candidates: at once, or slice by slice when the

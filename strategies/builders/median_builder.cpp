@@ -6,8 +6,9 @@
 
 namespace ccdlab {
 
-BvhTopology MedianBuilder::build(std::span<const Index> faces, std::span<const Box3> face_boxes) const {
-  return build_top_down(faces, face_boxes, [](std::span<BuildItem> items) {
+BvhTopology MedianBuilder::build(std::span<const Index> faces, std::span<const Box3> face_boxes,
+                                 BuildExecution exec) const {
+  return build_top_down(faces, face_boxes, exec, [](std::span<BuildItem> items) {
     Box3 cb;
     for (const auto& it : items) cb.grow(it.centroid);
     int axis;

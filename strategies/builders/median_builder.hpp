@@ -8,7 +8,8 @@ namespace ccdlab {
 class MedianBuilder final : public HierarchyBuilder {
  public:
   [[nodiscard]] std::string_view name() const override { return "median"; }
-  [[nodiscard]] BvhTopology build(std::span<const Index> faces, std::span<const Box3> face_boxes) const override;
+  [[nodiscard]] BvhTopology build(std::span<const Index> faces, std::span<const Box3> face_boxes,
+                                  BuildExecution exec = {}) const override;
 };
 
 }  // namespace ccdlab

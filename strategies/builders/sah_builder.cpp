@@ -25,9 +25,10 @@ std::size_t median_split(std::span<BuildItem> items, int axis) {
 
 }  // namespace
 
-BvhTopology SahBuilder::build(std::span<const Index> faces, std::span<const Box3> face_boxes) const {
+BvhTopology SahBuilder::build(std::span<const Index> faces, std::span<const Box3> face_boxes,
+                              BuildExecution exec) const {
   const int nb = params_.bins;
-  return build_top_down(faces, face_boxes, [nb](std::span<BuildItem> items) -> std::size_t {
+  return build_top_down(faces, face_boxes, exec, [nb](std::span<BuildItem> items) -> std::size_t {
     Box3 cb;
     for (const auto& it : items) cb.grow(it.centroid);
     int widest;

@@ -14,7 +14,8 @@ class SahBuilder final : public HierarchyBuilder {
   SahBuilder() = default;
   explicit SahBuilder(Params p) : params_(p) {}
   [[nodiscard]] std::string_view name() const override { return "sah"; }
-  [[nodiscard]] BvhTopology build(std::span<const Index> faces, std::span<const Box3> face_boxes) const override;
+  [[nodiscard]] BvhTopology build(std::span<const Index> faces, std::span<const Box3> face_boxes,
+                                  BuildExecution exec = {}) const override;
 
  private:
   Params params_{};

@@ -40,6 +40,34 @@ TEST(Builders, ProduceValidPreOrderTreesWithOneFacePerLeaf) {
   EXPECT_EQ(depth(median.build(faces, boxes), 0), int(std::ceil(std::log2(double(faces.size())))));
 }
 
+TEST(Builders, BuildTheSameTreeOnAnyNumberOfThreads) {
+  // 2·60·60 = 7,200 faces: several sub-tree tasks below the serial top splits (build_top_down).
+  std::mt19937 rng(4);
+  MeshData g = test::grid(61, 61);
+  g.positions = test::crumple(g.positions, rng, 0.01);
+  std::vector<Index> faces(g.faces.size());
+  for (std::size_t i = 0; i < faces.size(); ++i) faces[i] = Index(i);
+  auto boxes = face_boxes(g);
+  MedianBuilder median;
+  SahBuilder sah;
+  for (const HierarchyBuilder* b : std::initializer_list<const HierarchyBuilder*>{&median, &sah}) {
+    const BvhTopology one = b->build(faces, boxes);
+    for (int threads : {2, 3}) {
+      PhaseTrace trace;
+      const BvhTopology many = b->build(faces, boxes, {threads, &trace});
+      EXPECT_NO_THROW(validate_bvh(many, faces)) << b->name();
+      ASSERT_EQ(many.size(), one.size()) << b->name();
+      for (Index i = 0; i < one.size(); ++i) {
+        const BvhNode &x = one.nodes[i], &y = many.nodes[i];
+        ASSERT_TRUE(x.left == y.left && x.right == y.right && x.parent == y.parent && x.face == y.face)
+            << b->name() << " node " << i << " threads " << threads;
+      }
+      EXPECT_EQ(many.leaf_count, one.leaf_count) << b->name();
+      EXPECT_GT(trace.task_ms.size(), 2u) << b->name();  // the sub-trees were tasks
+    }
+  }
+}
+
 TEST(Builders, HandleSubsetsCoincidentCentroidsAndSingleFaces) {
   MeshData g = test::grid(4, 4);
   std::vector<Index> subset{3, 7, 8, 20, 31};
