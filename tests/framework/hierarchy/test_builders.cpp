@@ -22,13 +22,22 @@ int depth(const BvhTopology& bvh, Index node) {
   return n.is_leaf() ? 0 : 1 + std::max(depth(bvh, n.left), depth(bvh, n.right));
 }
 
-TEST(Builders, ProduceValidPreOrderTreesWithOneFacePerLeaf) {
-  std::mt19937 rng(3);
-  MeshData g = test::grid(17, 9);
+/// Every face of a crumpled grid, with its box.
+struct FaceSet {
+  std::vector<Index> faces;
+  std::vector<Box3> boxes;
+};
+FaceSet crumpled_grid(int nx, int ny, unsigned seed) {
+  std::mt19937 rng(seed);
+  MeshData g = test::grid(nx, ny);
   g.positions = test::crumple(g.positions, rng, 0.01);
-  std::vector<Index> faces(g.faces.size());
-  for (std::size_t i = 0; i < faces.size(); ++i) faces[i] = Index(i);
-  auto boxes = face_boxes(g);
+  FaceSet set{std::vector<Index>(g.faces.size()), face_boxes(g)};
+  for (std::size_t i = 0; i < set.faces.size(); ++i) set.faces[i] = Index(i);
+  return set;
+}
+
+TEST(Builders, ProduceValidPreOrderTreesWithOneFacePerLeaf) {
+  const auto [faces, boxes] = crumpled_grid(17, 9, 3);
   MedianBuilder median;
   SahBuilder sah;
   for (const HierarchyBuilder* b : std::initializer_list<const HierarchyBuilder*>{&median, &sah}) {
@@ -41,13 +50,8 @@ TEST(Builders, ProduceValidPreOrderTreesWithOneFacePerLeaf) {
 }
 
 TEST(Builders, BuildTheSameTreeOnAnyNumberOfThreads) {
-  // 2·60·60 = 7,200 faces: several sub-tree tasks below the serial top splits (build_top_down).
-  std::mt19937 rng(4);
-  MeshData g = test::grid(61, 61);
-  g.positions = test::crumple(g.positions, rng, 0.01);
-  std::vector<Index> faces(g.faces.size());
-  for (std::size_t i = 0; i < faces.size(); ++i) faces[i] = Index(i);
-  auto boxes = face_boxes(g);
+  // 2·60·60 = 7,200 faces: several sub-tree tasks below the top splits (build_top_down).
+  const auto [faces, boxes] = crumpled_grid(61, 61, 4);
   MedianBuilder median;
   SahBuilder sah;
   for (const HierarchyBuilder* b : std::initializer_list<const HierarchyBuilder*>{&median, &sah}) {
