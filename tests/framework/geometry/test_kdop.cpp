@@ -92,6 +92,40 @@ TEST(KDop, TouchingVolumesOverlapAndSeparatedOnesDoNot) {
   EXPECT_FALSE(dop_a.overlaps(dop_d));
 }
 
+template <int K>
+void check_overlaps_against_every_axis() {
+  // overlaps() compares four axes at a time where it can; the reference is one axis at a time. Small random
+  // triangles at random offsets: many pairs are apart on exactly one axis, and every axis is that one for some.
+  std::mt19937 rng(K);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<int> only_axis(KDop<K>::num_axes, 0);
+  int overlapping = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    KDop<K> a, b;
+    const Vec3 offset(u(rng), u(rng), u(rng));
+    for (int k = 0; k < 3; ++k) {
+      a.grow(Vec3(u(rng), u(rng), u(rng)) * 0.3);
+      b.grow(offset + Vec3(u(rng), u(rng), u(rng)) * 0.3);
+    }
+    int apart = 0, last = -1;
+    for (int i = 0; i < KDop<K>::num_axes; ++i)
+      if (a.min(i) > b.max(i) || b.min(i) > a.max(i)) ++apart, last = i;
+    ASSERT_EQ(a.overlaps(b), apart == 0) << "K=" << K << " trial " << trial;
+    ASSERT_EQ(b.overlaps(a), apart == 0) << "K=" << K << " trial " << trial;
+    overlapping += apart == 0;
+    if (apart == 1) ++only_axis[last];
+  }
+  EXPECT_GT(overlapping, 100) << "K=" << K;
+  for (int i = 0; i < KDop<K>::num_axes; ++i) EXPECT_GT(only_axis[i], 0) << "K=" << K << " axis " << i;
+}
+
+TEST(KDop, OverlapsAgreesWithTheAxisByAxisTest) {
+  check_overlaps_against_every_axis<6>();
+  check_overlaps_against_every_axis<14>();
+  check_overlaps_against_every_axis<18>();
+  check_overlaps_against_every_axis<26>();
+}
+
 TEST(KDop, ThicknessInflatesEverySlabByTheProjectedRadius) {
   KDop<26> a, b;
   a.grow(Vec3(0, 0, 0));
