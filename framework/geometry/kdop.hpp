@@ -168,7 +168,7 @@ class KDop {
     }
     sep = _mm_movemask_ps(apart) != 0;
 #endif
-    for (; i < num_axes; ++i) sep |= (min_[i] > o.max_[i]) | (o.min_[i] > max_[i]);
+    for (; i < num_axes; ++i) sep |= int(min_[i] > o.max_[i]) | int(o.min_[i] > max_[i]);
     return !sep;
   }
   [[nodiscard]] bool contains(const Vec3& p) const {

@@ -69,7 +69,7 @@ BvhTopology build_top_down(std::span<const Index> faces, std::span<const Box3> f
     children.resize(large.size());
     inner.resize(large.size());
     parallel_tasks(large.size(), threads, Distribution::dynamic, part, [&](std::size_t i, int) {
-      Range two[2];
+      Range two[2]{};  // a leaf has no children: copied, never read
       inner[i] = place(large[i], two);
       children[i] = {two[0], two[1]};
     });

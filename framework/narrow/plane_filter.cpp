@@ -112,7 +112,7 @@ std::size_t PlaneBatch::compact(const std::uint8_t* keep) {
     n += keep[i];
   }
   // Row by row, all columns at once (one pass over the indices; the rows before the first dropped one stay).
-  double* cols[kColumns + kResults];
+  double* cols[int(kColumns) + int(kResults)];
   for (int c = 0; c < kColumns; ++c) cols[c] = col_[c].data();
   for (int r = 0; r < kResults; ++r) cols[kColumns + r] = out_[r].data();
   std::size_t j = 0;
