@@ -150,16 +150,14 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   c.plane_ns += ns_since(t);
   // Stage 3 on stage 2's survivors, from the coefficients, threshold and reach stage 2 left in the rows: halves,
   // then sixteenths on what the halves keep (split_filter.hpp).
-  scratch.keep.assign(plane_kept, 1);
-  split_filter(plane, 0, batch.vf.size(), true, scratch.keep.data(), kSplitCoarseLevels);
-  split_filter(plane, batch.vf.size(), plane_kept, false, scratch.keep.data(), kSplitCoarseLevels);
-  plane.compact(scratch.keep.data());
-  compact(batch, scratch.keep);
-  const std::size_t halves_kept = batch.vf.size() + batch.ee.size();
-  scratch.keep.assign(halves_kept, 1);
-  split_filter(plane, 0, batch.vf.size(), true, scratch.keep.data(), kSplitLevels);
-  split_filter(plane, batch.vf.size(), halves_kept, false, scratch.keep.data(), kSplitLevels);
-  compact(batch, scratch.keep);
+  for (const int levels : {kSplitCoarseLevels, kSplitLevels}) {
+    const std::size_t rows = batch.vf.size() + batch.ee.size();
+    scratch.keep.assign(rows, 1);
+    split_filter(plane, 0, batch.vf.size(), true, scratch.keep.data(), levels);
+    split_filter(plane, batch.vf.size(), rows, false, scratch.keep.data(), levels);
+    if (levels != kSplitLevels) plane.compact(scratch.keep.data());  // the rows the next pass reads
+    compact(batch, scratch.keep);
+  }
   c.split_culled += plane_kept - batch.vf.size() - batch.ee.size();
   c.split_ns += ns_since(t_split);
 }
