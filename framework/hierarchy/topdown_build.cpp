@@ -26,7 +26,7 @@ BvhTopology build_top_down(std::span<const Index> faces, std::span<const Box3> f
   if (faces.empty()) return bvh;
   const auto t_start = std::chrono::steady_clock::now();
   std::vector<BuildItem> items(faces.size());
-  for (std::size_t i = 0; i < faces.size(); ++i) items[i] = {faces[i], face_boxes[i], face_boxes[i].center()};
+  for (std::size_t i = 0; i < faces.size(); ++i) items[i] = {face_boxes[i].center(), faces[i], Index(i)};
   bvh.nodes.assign(2 * faces.size() - 1, BvhNode{});
 
   // Writes range r's node; returns its children's ranges (none for a leaf). Each node is written by the one
@@ -89,6 +89,22 @@ BvhTopology build_top_down(std::span<const Index> faces, std::span<const Box3> f
   trace.serial_ms += ms_between(t_start, t_tasks) + ms_between(t_counts, std::chrono::steady_clock::now());
   trace.task_ms.insert(trace.task_ms.end(), subtrees.task_ms.begin(), subtrees.task_ms.end());
   return bvh;
+}
+
+std::size_t median_split(std::span<BuildItem> items, int axis) {
+  const std::size_t mid = items.size() / 2;
+  std::nth_element(items.begin(), items.begin() + std::ptrdiff_t(mid), items.end(),
+                   [axis](const BuildItem& a, const BuildItem& b) {
+                     return a.centroid[axis] != b.centroid[axis] ? a.centroid[axis] < b.centroid[axis]
+                                                                 : a.face < b.face;
+                   });
+  return mid;
+}
+
+Box3 centroid_bounds(std::span<const BuildItem> items) {
+  Box3 b;
+  for (const BuildItem& it : items) b.grow(it.centroid);
+  return b;
 }
 
 }  // namespace ccdlab

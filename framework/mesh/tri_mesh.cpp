@@ -103,14 +103,6 @@ TriMesh::TriMesh(std::size_t num_vertices, std::vector<Face> faces) : faces_(std
   }
 }
 
-bool TriMesh::faces_adjacent(Index f, Index g) const {
-  const Face& a = faces_[f];
-  const Face& b = faces_[g];
-  for (Index x : a)
-    if (x == b[0] || x == b[1] || x == b[2]) return true;
-  return false;
-}
-
 Index TriMesh::find_edge(Index a, Index b) const {
   if (a < 0 || b < 0 || a >= num_vertices_ || b >= num_vertices_) return -1;
   for (Index f : vertex_faces(a))

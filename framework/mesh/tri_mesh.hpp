@@ -53,7 +53,14 @@ class TriMesh {
   [[nodiscard]] const std::vector<Index>& face_components() const { return face_component_; }
   [[nodiscard]] Index num_components() const { return num_components_; }
   /// True when faces f and g share at least one vertex (or f == g).
-  [[nodiscard]] bool faces_adjacent(Index f, Index g) const;
+  [[nodiscard]] bool faces_adjacent(Index f, Index g) const {
+    // Branch-free (nine compares): the traversal asks this of every overlapping leaf pair, and the answers
+    // are close to random.
+    const Face &a = faces_[f], &b = faces_[g];
+    int shared = 0;
+    for (Index x : a) shared |= int(x == b[0]) | int(x == b[1]) | int(x == b[2]);
+    return shared != 0;
+  }
   /// Edge id joining a and b, or -1.
   [[nodiscard]] Index find_edge(Index a, Index b) const;
   /// Sum of sizes of all arrays, for reports.

@@ -14,23 +14,13 @@ double half_area(const Box3& b) {
   return e.x() * e.y() + e.y() * e.z() + e.z() * e.x();
 }
 
-std::size_t median_split(std::span<BuildItem> items, int axis) {
-  std::size_t mid = items.size() / 2;
-  std::nth_element(items.begin(), items.begin() + std::ptrdiff_t(mid), items.end(),
-                   [axis](const BuildItem& a, const BuildItem& b) {
-                     return a.centroid[axis] != b.centroid[axis] ? a.centroid[axis] < b.centroid[axis] : a.face < b.face;
-                   });
-  return mid;
-}
-
 }  // namespace
 
 BvhTopology SahBuilder::build(std::span<const Index> faces, std::span<const Box3> face_boxes,
                               BuildExecution exec) const {
   const int nb = params_.bins;
-  return build_top_down(faces, face_boxes, exec, [nb](std::span<BuildItem> items) -> std::size_t {
-    Box3 cb;
-    for (const auto& it : items) cb.grow(it.centroid);
+  return build_top_down(faces, face_boxes, exec, [nb, face_boxes](std::span<BuildItem> items) -> std::size_t {
+    const Box3 cb = centroid_bounds(items);
     int widest;
     Vec3 ext = cb.extent();
     ext.maxCoeff(&widest);
@@ -52,7 +42,7 @@ BvhTopology SahBuilder::build(std::span<const Index> faces, std::span<const Box3
       };
       for (const auto& it : items) {
         int b = bin_of(it);
-        bin_box[b].grow(it.box);
+        bin_box[b].grow(face_boxes[std::size_t(it.box)]);
         ++bin_count[b];
       }
       Box3 acc;
