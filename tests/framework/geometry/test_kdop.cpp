@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
 #include <random>
 #include <set>
 
@@ -151,6 +153,35 @@ TEST(KDop, MergeIsTheUnion) {
   EXPECT_FALSE(m.contains(Vec3(4, 0, 0)));
   EXPECT_TRUE(KDop<14>().empty());
   EXPECT_FALSE(KDop<14>().overlaps(m));
+}
+
+
+// The outward rounding every k-DOP relies on: round_down(x) is the largest float <= x, round_up(x) the
+// smallest float >= x, at zeros, subnormals, the float range's ends, exact floats and doubles between them.
+TEST(KDop, RoundingIsTheNearestFloatOutward) {
+  const float inf = std::numeric_limits<float>::infinity();
+  auto reference_down = [&](double x) {
+    const auto f = static_cast<float>(x);
+    return static_cast<double>(f) > x ? std::nextafter(f, -inf) : f;
+  };
+  auto reference_up = [&](double x) {
+    const auto f = static_cast<float>(x);
+    return static_cast<double>(f) < x ? std::nextafter(f, inf) : f;
+  };
+  std::vector<double> xs = {0.0, -0.0, 1.0, -1.0, 0.1, -0.1, 1e-45, -1e-45, 1e-40, -1e-40, 3.4028234663852886e38,
+                            -3.4028234663852886e38, double(std::numeric_limits<float>::denorm_min()),
+                            double(std::numeric_limits<float>::min()), -double(std::numeric_limits<float>::min())};
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  std::uniform_int_distribution<int> exponent(-140, 120);
+  for (int i = 0; i < 100000; ++i) xs.push_back(std::ldexp(mantissa(rng), exponent(rng)));
+  for (double x : xs) {
+    const float lo = detail::round_down(x), hi = detail::round_up(x);
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(lo), std::bit_cast<std::uint32_t>(reference_down(x))) << x;
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(hi), std::bit_cast<std::uint32_t>(reference_up(x))) << x;
+    EXPECT_LE(double(lo), x);
+    EXPECT_GE(double(hi), x);
+  }
 }
 
 }  // namespace
