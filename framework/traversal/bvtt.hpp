@@ -68,7 +68,10 @@ struct BvttView {
   }
 };
 
-/// Depth-first traversal of the binary BVTT below `start`: each popped pair node is one BV test.
+/// Depth-first traversal of the binary BVTT below `start`: each pair node visited is one BV test.
+/// The first child of a node is visited next without going through the stack (the others are pushed in
+/// reverse order, so the visiting order is plain pre-order DFS): a push and a pop per node were on the
+/// loop's critical path (store, then reload of the index every load of the next test depends on).
 template <class BV>
 void traverse_bvtt_binary(const BvttView<BV>& v, BvttNode start, std::vector<BvttNode>& stack, TraversalOutput& out) {
   const auto& na = v.bvh_a->nodes;
@@ -77,32 +80,36 @@ void traverse_bvtt_binary(const BvttView<BV>& v, BvttNode start, std::vector<Bvt
   const auto& bvb = *v.bv_b;
   std::uint64_t bv_tests = 0;
   stack.clear();
-  stack.push_back(start);
-  while (!stack.empty()) {
-    BvttNode n = stack.back();
-    stack.pop_back();
+  BvttNode n = start;
+  for (;;) {
     const BvhNode& A = na[n.a];
     if (v.self && n.a == n.b) {
-      if (A.is_leaf() || (v.skip_root && v.skip_root[n.a] >= 0)) continue;
-      stack.push_back({A.left, A.right});
-      stack.push_back({A.right, A.right});
-      stack.push_back({A.left, A.left});
-      continue;
-    }
-    ++bv_tests;
-    if (!bva[n.a].overlaps(bvb[n.b])) continue;
-    const BvhNode& B = nb[n.b];
-    if (A.is_leaf() && B.is_leaf()) {
-      v.emit_leaf_pair(A, B, out.pairs);
-      continue;
-    }
-    if (v.descend_a(n.a, n.b)) {
-      stack.push_back({A.right, n.b});
-      stack.push_back({A.left, n.b});
+      if (!A.is_leaf() && !(v.skip_root && v.skip_root[n.a] >= 0)) {
+        stack.push_back({A.left, A.right});
+        stack.push_back({A.right, A.right});
+        n = {A.left, A.left};
+        continue;
+      }
     } else {
-      stack.push_back({n.a, B.right});
-      stack.push_back({n.a, B.left});
+      ++bv_tests;
+      if (bva[n.a].overlaps(bvb[n.b])) {
+        const BvhNode& B = nb[n.b];
+        if (A.is_leaf() && B.is_leaf()) {
+          v.emit_leaf_pair(A, B, out.pairs);
+        } else if (v.descend_a(n.a, n.b)) {
+          stack.push_back({A.right, n.b});
+          n.a = A.left;
+          continue;
+        } else {
+          stack.push_back({n.a, B.right});
+          n.b = B.left;
+          continue;
+        }
+      }
     }
+    if (stack.empty()) break;
+    n = stack.back();
+    stack.pop_back();
   }
   out.bv_tests += bv_tests;
 }
