@@ -5,8 +5,8 @@
 
 namespace ccdlab {
 
-std::vector<FacePair> brute_force_candidates(const TriMesh& mesh, const CollisionRules& rules, const AnyBvs& face_bvs) {
-  std::vector<FacePair> out;
+FacePairs brute_force_candidates(const TriMesh& mesh, const CollisionRules& rules, const AnyBvs& face_bvs) {
+  FacePairs out;
   std::visit(
       [&](const auto& bvs) {
         for (Index a = 0; a < mesh.num_faces(); ++a)

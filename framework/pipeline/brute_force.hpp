@@ -11,7 +11,7 @@
 namespace ccdlab {
 
 /// All face pairs (a < b) that may collide under `rules` and whose face BVs overlap, sorted.
-std::vector<FacePair> brute_force_candidates(const TriMesh& mesh, const CollisionRules& rules, const AnyBvs& face_bvs);
+FacePairs brute_force_candidates(const TriMesh& mesh, const CollisionRules& rules, const AnyBvs& face_bvs);
 
 /// All colliding feature pairs: every VF (v ∉ f) and EE (no shared vertex) pair of interacting bodies,
 /// each tested with `tester`. Sorted like CcdPipeline's contacts. With `box_cull`, pairs whose swept feature

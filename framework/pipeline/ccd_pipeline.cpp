@@ -13,7 +13,8 @@ using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return ms_between(t, Clock::now()); }
 
 /// Chunk sizes of the parallel phases: large enough to amortise scheduling, small enough to balance.
-constexpr std::size_t kCandidateChunk = 128;
+constexpr std::size_t kCandidateChunk = 512;  // 128 before: n-body's narrow phase at 2 threads 1.04x (fewer
+                                              // dispatches, clock reads, batch paddings; same answers)
 constexpr std::size_t kOrphanChunk = 2048;
 constexpr std::size_t kFaceChunk = 2048;
 
@@ -478,7 +479,7 @@ void CcdPipeline::traverse_and_test(const MemoryPlan& plan, StepResult& result) 
         traverse_ms += ms_since(t);
         if (candidates_.pairs.size() >= plan.flush_pairs) {
           test_candidates(result);
-          std::vector<FacePair>().swap(candidates_.pairs);  // free, not just clear: the point is the memory
+          FacePairs().swap(candidates_.pairs);  // free, not just clear: the point is the memory
         }
       }
     }

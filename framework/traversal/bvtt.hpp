@@ -42,10 +42,10 @@ struct BvttView {
   [[nodiscard]] bool wide() const { return wide_a && wide_b; }
   /// Appends the candidate of two overlapping leaves (ordered (min, max) in self passes; none when adjacent).
   /// Returns whether one was appended.
-  bool emit_leaf_pair(const BvhNode& A, const BvhNode& B, std::vector<FacePair>& out) const {
+  bool emit_leaf_pair(const BvhNode& A, const BvhNode& B, FacePairs& out) const {
     return emit_face_pair(A.face, B.face, out);
   }
-  bool emit_face_pair(Index fa, Index fb, std::vector<FacePair>& out) const {
+  bool emit_face_pair(Index fa, Index fb, FacePairs& out) const {
     if (!self) {
       out.push_back({fa, fb});
       return true;

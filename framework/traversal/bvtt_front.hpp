@@ -45,7 +45,7 @@ std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b,
 /// Processes front nodes [begin, end): appends their replacements to `next` and candidates to `pairs`.
 template <class BV>
 void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNode* end, bool prune,
-                   std::vector<FrontNode>& next, std::vector<FacePair>& pairs, std::vector<BvttNode>& stack,
+                   std::vector<FrontNode>& next, FacePairs& pairs, std::vector<BvttNode>& stack,
                    FrontCounters& counters) {
   FrontCounters c;  // local: the caller's counters are written once, at the end
   const auto& na = v.bvh_a->nodes;

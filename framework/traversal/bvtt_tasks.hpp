@@ -54,10 +54,11 @@ std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t wa
 }
 
 /// Runs a depth-first traversal below each task on `threads` threads: dynamically (one task at a time to
-/// whichever thread is free) or in `threads` equal-count contiguous chunks fixed before the start.
+/// whichever thread is free) or in `threads` equal-count contiguous chunks fixed before the start. Returns the
+/// trace of merging the threads' candidates into `out`.
 template <class BV>
-void run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, int threads, Distribution dist,
-                    TraversalOutput& out, PhaseTrace& trace) {
+PhaseTrace run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, int threads, Distribution dist,
+                          TraversalOutput& out, PhaseTrace& trace) {
   struct Local {
     TraversalOutput out;
     BvttStack stack;  // traverse_bvtt appends to `out` and needs its own stack
@@ -67,13 +68,12 @@ void run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, i
     Local& l = local[tid].value;
     traverse_bvtt(v, tasks[i], l.stack, l.out);
   });
-  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<const FacePairs*> lists;
   for (const auto& l : local) {
-    const TraversalOutput& o = l.value.out;
-    out.pairs.insert(out.pairs.end(), o.pairs.begin(), o.pairs.end());
-    out.bv_tests += o.bv_tests;
+    lists.push_back(&l.value.out.pairs);
+    out.bv_tests += l.value.out.bv_tests;
   }
-  trace.serial_ms += ms_between(t0, std::chrono::steady_clock::now());
+  return append_candidates(out.pairs, lists, threads);
 }
 
 }  // namespace ccdlab
@@ -94,8 +94,9 @@ inline void split_and_run(const TraversalPass& pass, int tasks_per_thread, Distr
     trace.serial_ms += serial;
     out.stats.serial_ms += serial;
     out.stats.tasks += tasks.size();
-    run_bvtt_tasks(view, tasks, pass.threads, dist, out, trace);
+    PhaseTrace merge = run_bvtt_tasks(view, tasks, pass.threads, dist, out, trace);
     traces.push_back(std::move(trace));
+    traces.push_back(std::move(merge));
   });
 }
 

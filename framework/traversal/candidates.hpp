@@ -2,9 +2,12 @@
 // What the broad phase hands to the narrow phase: candidate face pairs whose swept bounding volumes overlap.
 #include <compare>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "framework/mesh/tri_mesh.hpp"
+#include "framework/util/parallel.hpp"
+#include "framework/util/uninitialized_vector.hpp"
 
 namespace ccdlab {
 
@@ -13,6 +16,14 @@ struct FacePair {
   Index b;
   auto operator<=>(const FacePair&) const = default;
 };
+
+/// A list of candidates. Growing it leaves the new entries uninitialized (they are written right after).
+using FacePairs = UninitializedVector<FacePair>;
+
+/// Appends per-thread candidate lists to `out`, in list order (what a serial merge gives), copying in parallel
+/// chunks; returns their trace (phase "merge_candidates"). Merged on one thread, n-body's 4.6M candidates
+/// (37 MB written, its pages first touched by that thread) took ~25 ms of a ~110 ms traversal at two threads.
+PhaseTrace append_candidates(FacePairs& out, std::span<const FacePairs* const> lists, int threads);
 
 /// Work counters of a scheduler for one step (summed over passes).
 struct TraversalStats {
@@ -33,7 +44,7 @@ struct TraversalStats {
 };
 
 struct TraversalOutput {
-  std::vector<FacePair> pairs;
+  FacePairs pairs;
   std::uint64_t bv_tests = 0;  ///< BV overlap tests performed (kept beside stats for the sequential kernels)
   TraversalStats stats;
 

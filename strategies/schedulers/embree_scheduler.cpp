@@ -124,7 +124,7 @@ void EmbreeScheduler::collect(const TraversalPass& pass, TraversalOutput& out, s
     if (const RTCError e = rtcGetDeviceError(state_->device); e != RTC_ERROR_NONE)
       fail("scheduler embree: rtcCollide failed (error {})", int(e));
     // Exactly sequential's candidates: overlapping leaf k-DOPs, non-adjacent, each unordered pair once.
-    std::vector<FacePair> pairs;
+    FacePairs pairs;
     pairs.reserve(found.pairs.size());
     std::uint64_t tests = 0;
     for (auto [i, j] : found.pairs) {

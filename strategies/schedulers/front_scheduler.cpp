@@ -46,7 +46,7 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
   const int threads = pass.threads;
   std::vector<PerThread<std::vector<FrontNode>>> next(tasks.size());  // padded: neighbours written concurrently
   struct Local {
-    std::vector<FacePair> pairs;
+    FacePairs pairs;
     std::vector<BvttNode> stack;
     FrontCounters counters;
   };
@@ -73,9 +73,10 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
     front.size += front.pieces[t].size();
   }
   if (front.size_after_rebuild == 0) front.size_after_rebuild = front.size;
+  std::vector<const FacePairs*> lists;
   for (int t = 0; t < threads; ++t) {
     const Local& l = local[t].value;
-    out.pairs.insert(out.pairs.end(), l.pairs.begin(), l.pairs.end());
+    lists.push_back(&l.pairs);
     out.bv_tests += l.counters.bv_tests;
     out.stats.front_visited += l.counters.visited;
     out.stats.sprouted += l.counters.sprouted;
@@ -87,6 +88,7 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
   trace.serial_ms += ms_between(t_merge, Clock::now());
   out.stats.serial_ms += trace.serial_ms;
   traces.push_back(std::move(trace));
+  traces.push_back(append_candidates(out.pairs, lists, threads));
 }
 
 void FrontScheduler::release(int pass_id) { fronts_.erase(pass_id); }

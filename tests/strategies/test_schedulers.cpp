@@ -28,7 +28,7 @@ PipelineStrategies make(const std::string& scheduler, const std::map<std::string
 }
 
 struct RunResult {
-  std::vector<std::vector<FacePair>> candidates;  // sorted, per step
+  std::vector<FacePairs> candidates;  // sorted, per step
   std::vector<std::uint64_t> hashes;
   std::uint64_t bv_tests = 0;
 };
