@@ -97,11 +97,12 @@ void traverse_bvtt_binary(const BvttView<BV>& v, BvttNode start, std::vector<Bvt
   BvttNode* base = stack.data();
   BvttNode* top = base;  // one past the last pending node
   BvttNode* room = base + stack.size() - 2;  // top may not pass this before a visit
-  // Candidates are written the same way: through a pointer, into room made ahead (uninitialized), trimmed at
-  // the end.
+  // Candidates are written the same way: through a pointer, into room made ahead (uninitialized: the whole
+  // capacity, or at least 1024 more; doubled when full), trimmed at the end. (Making room from the size alone,
+  // e.g. 2·size, reallocated the list at every call: phc calls this once per task on the same thread's list.)
   FacePairs& pairs = out.pairs;
   std::size_t emitted = pairs.size();
-  pairs.resize(std::max<std::size_t>(2 * emitted, emitted + 1024));
+  pairs.resize(std::max<std::size_t>(pairs.capacity(), emitted + 1024));
   FacePair* pout = pairs.data() + emitted;
   FacePair* pend = pairs.data() + pairs.size();
   BvttNode n = start;
