@@ -64,9 +64,11 @@ struct BvttView {
   }
   /// The descent rule of a pair node: split a (true) or b (false) — the larger by size_measure, never a leaf.
   [[nodiscard]] bool descend_a(Index a, Index b) const {
-    const BvhNode& A = bvh_a->nodes[a];
-    const BvhNode& B = bvh_b->nodes[b];
-    return B.is_leaf() || (!A.is_leaf() && (*bv_a)[a].size_measure() >= (*bv_b)[b].size_measure());
+    return descend_a(bvh_a->nodes[a], bvh_b->nodes[b], (*bv_a)[a], (*bv_b)[b]);
+  }
+  /// The same rule on the nodes and volumes themselves (the walks that hold raw pointers).
+  [[nodiscard]] static bool descend_a(const BvhNode& A, const BvhNode& B, const BV& va, const BV& vb) {
+    return B.is_leaf() || (!A.is_leaf() && va.size_measure() >= vb.size_measure());
   }
   /// Is (a, b) a pair node inside a patch whose self test is skipped?
   [[nodiscard]] bool in_skipped_patch(Index a, Index b) const {
@@ -134,8 +136,8 @@ void traverse_bvtt_binary(const BvttView<BV>& v, BvttNode start, std::vector<Bvt
             pend = pairs.data() + pairs.size();
           }
           pout = v.write_face_pair(pout, A.face, B.face);
-        } else if (B.is_leaf() || (!A.is_leaf() && bva[n.a].size_measure() >= bvb[n.b].size_measure())) {
-          *top++ = {A.right, n.b};  // descend_a's rule: the larger side, never a leaf
+        } else if (v.descend_a(A, B, bva[n.a], bvb[n.b])) {
+          *top++ = {A.right, n.b};
           n.a = A.left;
           continue;
         } else {

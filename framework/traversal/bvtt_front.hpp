@@ -43,21 +43,26 @@ std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b,
                                      double granularity = 512, double min_pairs = 4096);
 
 /// Processes front nodes [begin, end): appends their replacements to `next` and candidates to `pairs`.
+/// As in traverse_bvtt_binary, the arrays are read through raw pointers held in locals (a front node's `flags`
+/// is a byte, and a store through a byte may alias anything, so through the vectors every push reloaded
+/// them), and a sprout visits the first child next without a push and a pop.
 template <class BV>
 void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNode* end, bool prune,
                    std::vector<FrontNode>& next, FacePairs& pairs, std::vector<BvttNode>& stack,
                    FrontCounters& counters) {
   FrontCounters c;  // local: the caller's counters are written once, at the end
-  const auto& na = v.bvh_a->nodes;
-  const auto& nb = v.bvh_b->nodes;
-  const auto& bva = *v.bv_a;
-  const auto& bvb = *v.bv_b;
+  const BvhNode* const na = v.bvh_a->nodes.data();
+  const BvhNode* const nb = v.bvh_b->nodes.data();
+  const BV* const bva = v.bv_a->data();
+  const BV* const bvb = v.bv_b->data();
+  const Index* const leaf_count_a = v.bvh_a->leaf_count.data();
+  const bool self = v.self;
   // An overlapping leaf pair: a candidate, and it stays on the front — unless adjacent (then neither).
   auto emit = [&](const BvhNode& A, const BvhNode& B, Index a, Index b, std::uint8_t flags) {
     if (v.emit_leaf_pair(A, B, pairs)) next.push_back(FrontNode{a, b, flags});
   };
   // Is `p` an ancestor of (or equal to) `q` in tree a? Sub-tree of p = pre-order range [p, p + 2·leaves − 1).
-  auto contains = [&](Index p, Index q) { return q >= p && q < v.bvh_a->subtree_end(p); };
+  auto contains = [&](Index p, Index q) { return q >= p && q < p + 2 * leaf_count_a[p] - 1; };
   // Appends a stopping node; then collapses the last two entries into their parent while they are carried-over,
   // non-overlapping siblings and the parent does not overlap either.
   auto push_stop = [&](FrontNode n) {
@@ -68,11 +73,11 @@ void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNod
       Index pa = -1, pb = -1;
       if (x.b == y.b && x.a != y.a) {
         const Index p = na[x.a].parent;
-        if (p < 0 || na[p].left != x.a || na[p].right != y.a || (v.self && contains(p, x.b))) break;
+        if (p < 0 || na[p].left != x.a || na[p].right != y.a || (self && contains(p, x.b))) break;
         pa = p, pb = x.b;
       } else if (x.a == y.a && x.b != y.b) {
         const Index p = nb[x.b].parent;
-        if (p < 0 || nb[p].left != x.b || nb[p].right != y.b || (v.self && contains(p, x.a))) break;
+        if (p < 0 || nb[p].left != x.b || nb[p].right != y.b || (self && contains(p, x.a))) break;
         pa = x.a, pb = p;
       } else {
         break;
@@ -85,54 +90,60 @@ void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNod
     }
   };
   for (const FrontNode* f = begin; f != end; ++f) {
-    if (v.in_skipped_patch(f->a, f->b)) {
+    const Index fa = f->a, fb = f->b;
+    const std::uint8_t fflags = f->flags;
+    if (v.in_skipped_patch(fa, fb)) {
       // Inside a patch that cannot touch itself this step: kept, untested, and not merged this step.
-      next.push_back(FrontNode{f->a, f->b, std::uint8_t(f->flags | FrontNode::kFresh)});
+      next.push_back(FrontNode{fa, fb, std::uint8_t(fflags | FrontNode::kFresh)});
       continue;
     }
     ++c.visited;
     ++c.bv_tests;
-    const BvhNode& A = na[f->a];
-    const BvhNode& B = nb[f->b];
-    const bool fresh = f->flags & FrontNode::kFresh;
-    if (!bva[f->a].overlaps(bvb[f->b])) {
-      push_stop(FrontNode{f->a, f->b, std::uint8_t(fresh ? FrontNode::kFresh : 0)});
+    const BvhNode& A = na[fa];
+    const BvhNode& B = nb[fb];
+    const bool fresh = fflags & FrontNode::kFresh;
+    if (!bva[fa].overlaps(bvb[fb])) {
+      push_stop(FrontNode{fa, fb, std::uint8_t(fresh ? FrontNode::kFresh : 0)});
       continue;
     }
     if (A.is_leaf() && B.is_leaf()) {
-      emit(A, B, f->a, f->b, FrontNode::kOverlapped);
+      emit(A, B, fa, fb, FrontNode::kOverlapped);
       continue;
     }
     // Sprout: depth-first below f; every stopping node joins the front, marked fresh (no prune attempts:
     // its parent overlaps by construction).
     ++c.sprouted;
     stack.clear();
-    stack.push_back({f->a, f->b});
+    BvttNode n{fa, fb};
     bool first = true;
-    while (!stack.empty()) {
-      BvttNode n = stack.back();
-      stack.pop_back();
+    for (;;) {
       const BvhNode& X = na[n.a];
       const BvhNode& Y = nb[n.b];
+      bool stop = false;
       if (!first) {
         ++c.bv_tests;
         if (!bva[n.a].overlaps(bvb[n.b])) {
           next.push_back(FrontNode{n.a, n.b, FrontNode::kFresh});
-          continue;
-        }
-        if (X.is_leaf() && Y.is_leaf()) {
+          stop = true;
+        } else if (X.is_leaf() && Y.is_leaf()) {
           emit(X, Y, n.a, n.b, FrontNode::kOverlapped | FrontNode::kFresh);
-          continue;
+          stop = true;
         }
       }
       first = false;
-      if (v.descend_a(n.a, n.b)) {
-        stack.push_back({X.right, n.b});
-        stack.push_back({X.left, n.b});
-      } else {
-        stack.push_back({n.a, Y.right});
-        stack.push_back({n.a, Y.left});
+      if (!stop) {
+        if (v.descend_a(X, Y, bva[n.a], bvb[n.b])) {
+          stack.push_back({X.right, n.b});
+          n.a = X.left;
+        } else {
+          stack.push_back({n.a, Y.right});
+          n.b = Y.left;
+        }
+        continue;
       }
+      if (stack.empty()) break;
+      n = stack.back();
+      stack.pop_back();
     }
   }
   counters.bv_tests += c.bv_tests;
