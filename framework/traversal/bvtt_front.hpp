@@ -55,14 +55,14 @@ void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNod
   const BvhNode* const nb = v.bvh_b->nodes.data();
   const BV* const bva = v.bv_a->data();
   const BV* const bvb = v.bv_b->data();
-  const Index* const leaf_count_a = v.bvh_a->leaf_count.data();
+  const BvhTopology& tree_a = *v.bvh_a;
   const bool self = v.self;
   // An overlapping leaf pair: a candidate, and it stays on the front — unless adjacent (then neither).
   auto emit = [&](const BvhNode& A, const BvhNode& B, Index a, Index b, std::uint8_t flags) {
     if (v.emit_leaf_pair(A, B, pairs)) next.push_back(FrontNode{a, b, flags});
   };
   // Is `p` an ancestor of (or equal to) `q` in tree a? Sub-tree of p = pre-order range [p, p + 2·leaves − 1).
-  auto contains = [&](Index p, Index q) { return q >= p && q < p + 2 * leaf_count_a[p] - 1; };
+  auto contains = [&](Index p, Index q) { return q >= p && q < tree_a.subtree_end(p); };
   // Appends a stopping node; then collapses the last two entries into their parent while they are carried-over,
   // non-overlapping siblings and the parent does not overlap either.
   auto push_stop = [&](FrontNode n) {
