@@ -57,7 +57,8 @@ def render(folder: Path, frames: list[int], out: Path, dpi: int) -> Path:
         ax.set_axis_off()
         ax.set_title(f"frame {frame}, t = {rec['time_s']:.2f} s\n{rec['intersecting_pairs']} crossing pairs, "
                      f"{rec['sim_ms']:.0f} ms", fontsize=8)
-    fig.suptitle(f"{meta['scene']}: {meta['triangles']:,} triangles, rev {meta['git_revision']}", fontsize=10)
+    # Above the frames' two-line titles (bbox_inches="tight" keeps it in the picture).
+    fig.suptitle(f"{meta['scene']}: {meta['triangles']:,} triangles, rev {meta['git_revision']}", fontsize=10, y=1.06)
     fig.tight_layout()
     fig.savefig(out, dpi=dpi, bbox_inches="tight")
     plt.close(fig)
