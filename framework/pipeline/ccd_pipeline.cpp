@@ -392,6 +392,8 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   result.traces.push_back(std::move(boxes));
   tm.narrow_ms = ms_since(t);
 
+  // A memory-bounded step keeps no candidates from the step before: their pages would count as resident.
+  if (budget_.limit() > 0) candidates_.pairs.release();
   const MemoryPlan plan = budget_.plan(budget_.limit() > 0 ? current_rss_bytes() : 0, std::size_t(mesh_.num_faces()));
   traverse_and_test(plan, result);
   budget_.record(c.candidate_pairs, result.traversal.front_bytes);
@@ -410,11 +412,11 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
 
 void CcdPipeline::test_candidates(StepResult& result) {
   const auto t = Clock::now();
-  result.counters.candidate_pairs += candidates_.pairs.size();
-  const std::span<const FacePair> pairs(candidates_.pairs);
+  const CandidateList& pairs = candidates_.pairs;
+  result.counters.candidate_pairs += pairs.size();
   narrow_in_parallel(pairs.size(), kCandidateChunk, "narrow", result,
                      [&](std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters&) {
-                       narrow_.gather(pairs.subspan(b, e - b), batch);
+                       pairs.for_each_span(b, e, [&](std::span<const FacePair> s) { narrow_.gather(s, batch); });
                      });
   result.timings.narrow_ms += ms_since(t);
 }
@@ -454,6 +456,7 @@ void CcdPipeline::traverse_and_test(const MemoryPlan& plan, StepResult& result) 
   double traverse_ms = 0;
   if (!plan.streamed) {
     const auto t = Clock::now();
+    candidates_.pairs.reserve(strategies_.threads, plan.expected_pairs);
     for (const TraversalPass& pass : passes_) strategies_.scheduler->collect(pass, candidates_, result.traces);
     traverse_ms = ms_since(t);
     test_candidates(result);
@@ -479,7 +482,7 @@ void CcdPipeline::traverse_and_test(const MemoryPlan& plan, StepResult& result) 
         traverse_ms += ms_since(t);
         if (candidates_.pairs.size() >= plan.flush_pairs) {
           test_candidates(result);
-          FacePairs().swap(candidates_.pairs);  // free, not just clear: the point is the memory
+          candidates_.pairs.release();  // free, not just clear: the point is the memory
         }
       }
     }

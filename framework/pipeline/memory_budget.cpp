@@ -9,14 +9,16 @@ namespace ccdlab {
 
 MemoryPlan MemoryBudget::plan(std::uint64_t resident, std::size_t faces) const {
   MemoryPlan p;
-  if (forced_slices_ > 0) return MemoryPlan{true, forced_slices_, 1, 0, 0};
+  if (forced_slices_ > 0) return MemoryPlan{true, forced_slices_, 1, 0, 0, 0};
+  // A step grows by a quarter over the last one at most, in the scenes we know; the first step is a guess.
+  const auto grown = [](std::uint64_t last) { return last + last / 4; };
+  p.expected_pairs = std::size_t(recorded_ ? grown(last_pairs_) : std::uint64_t(faces) * kFirstStepCandidatesPerFace);
   if (limit_ == 0) return p;
   if (resident >= limit_)
     fail("memory_limit {}: the mesh, BVH and per-step buffers already take {} resident before the traversal; raise "
          "memory_limit or lower the size of the scene", format_bytes(limit_), format_bytes(resident));
   p.budget_bytes = limit_ - resident;
-  // A step grows by a quarter over the last one at most, in the scenes we know; the first step is a guess.
-  p.predicted_bytes = last_transient_ > 0 ? last_transient_ + last_transient_ / 4
+  p.predicted_bytes = last_transient_ > 0 ? grown(last_transient_)
                                           : std::uint64_t(faces) * kFirstStepCandidatesPerFace * kBytesPerCandidate;
   if (p.predicted_bytes <= p.budget_bytes) return p;
   p.streamed = true;
@@ -29,6 +31,8 @@ MemoryPlan MemoryBudget::plan(std::uint64_t resident, std::size_t faces) const {
 
 void MemoryBudget::record(std::uint64_t candidate_pairs, std::uint64_t front_bytes) {
   last_transient_ = candidate_pairs * kBytesPerCandidate + front_bytes;
+  last_pairs_ = candidate_pairs;
+  recorded_ = true;
 }
 
 }  // namespace ccdlab

@@ -17,12 +17,16 @@ struct MemoryPlan {
   std::size_t flush_pairs = 0;      ///< test and free the candidates when this many are buffered (0 = never)
   std::uint64_t budget_bytes = 0;   ///< memory_limit − resident memory at the start of the traversal
   std::uint64_t predicted_bytes = 0;
+  /// Candidate pairs the step is expected to find (the last step's plus a quarter, or the first-step guess):
+  /// the room the candidate list reserves ahead when the step is not streamed.
+  std::size_t expected_pairs = 0;
 };
 
 class MemoryBudget {
  public:
-  /// Bytes one buffered candidate face pair costs: the pair in a thread's buffer and again in the merged list.
-  static constexpr std::uint64_t kBytesPerCandidate = 2 * 8;
+  /// Bytes one buffered candidate face pair costs: the pair in its thread's part of the list (CandidateList:
+  /// the parts are read in place, never merged into a copy).
+  static constexpr std::uint64_t kBytesPerCandidate = 8;
   /// Resident bytes per triangle of a whole run before its first traversal (mesh, frames, BVH, boxes, orphans):
   /// 845 on the n-body step, 118 MiB for 146,480 triangles (docs/reliability.md). A lower bound for the
   /// refusal of a generated scene before it is made.
@@ -45,6 +49,8 @@ class MemoryBudget {
   std::uint64_t limit_ = 0;  ///< 0 = no limit
   std::size_t forced_slices_ = 0;
   std::uint64_t last_transient_ = 0;
+  std::uint64_t last_pairs_ = 0;
+  bool recorded_ = false;
 };
 
 }  // namespace ccdlab

@@ -41,7 +41,7 @@ QualityMeter::QualityMeter(const TriMesh& mesh, std::vector<Body> bodies, Pipeli
 FrameQuality QualityMeter::measure(const Positions& x) {
   pipeline_->step(x, x);  // the broad phase of a step from the frame to itself: face pairs within the thickness
   FrameQuality q;
-  for (const FacePair& pair : pipeline_->last_candidates().pairs) {
+  for (const FacePair& pair : pipeline_->last_candidates().pairs.flatten()) {
     const auto& fa = mesh_.face(pair.a);
     const auto& fb = mesh_.face(pair.b);
     bool shared = false;

@@ -85,7 +85,8 @@ struct BvttView {
 /// rod-twist), so the arrays are read through raw pointers held in registers (through the vectors, every
 /// store to the stack or the output made the compiler reload them) and the stack's end is a plain pointer.
 template <class BV>
-void traverse_bvtt_binary(const BvttView<BV>& v, BvttNode start, std::vector<BvttNode>& stack, TraversalOutput& out) {
+void traverse_bvtt_binary(const BvttView<BV>& v, BvttNode start, std::vector<BvttNode>& stack, FacePairs& pairs,
+                          std::uint64_t& bv_tests_out) {
   const BvhNode* const na = v.bvh_a->nodes.data();
   const BvhNode* const nb = v.bvh_b->nodes.data();
   const BV* const bva = v.bv_a->data();
@@ -102,7 +103,6 @@ void traverse_bvtt_binary(const BvttView<BV>& v, BvttNode start, std::vector<Bvt
   // Candidates are written the same way: through a pointer, into room made ahead (uninitialized: the whole
   // capacity, or at least 1024 more; doubled when full), trimmed at the end. (Making room from the size alone,
   // e.g. 2·size, reallocated the list at every call: phc calls this once per task on the same thread's list.)
-  FacePairs& pairs = out.pairs;
   std::size_t emitted = pairs.size();
   pairs.resize(std::max<std::size_t>(pairs.capacity(), emitted + 1024));
   FacePair* pout = pairs.data() + emitted;
@@ -151,7 +151,7 @@ void traverse_bvtt_binary(const BvttView<BV>& v, BvttNode start, std::vector<Bvt
     n = *--top;
   }
   pairs.resize(std::size_t(pout - pairs.data()));
-  out.bv_tests += bv_tests;
+  bv_tests_out += bv_tests;
 }
 
 
@@ -175,7 +175,8 @@ struct BvttStack {
 /// (R, R), (L, R) as in the binary BVTT, so normal-cone skips apply unchanged. The descent rule is the binary
 /// one (the larger side by size_measure, never a leaf); the candidates are the same (see wide_bvh.hpp).
 template <class BV>
-void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideBvttEntry>& stack, TraversalOutput& out) {
+void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideBvttEntry>& stack, FacePairs& pairs,
+                        std::uint64_t& bv_tests_out) {
   constexpr int W = WideLayout::kWidth;
   const auto& na = v.bvh_a->nodes;
   const auto& bva = *v.bv_a;
@@ -207,7 +208,7 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
       continue;
     }
     if (n.wa < 0 && n.wb < 0) {
-      v.emit_face_pair(~n.wa, ~n.wb, out.pairs);
+      v.emit_face_pair(~n.wa, ~n.wb, pairs);
       continue;
     }
     const bool down_a = n.wb < 0 || (n.wa >= 0 && n.sa >= n.sb);  // the binary rule: the larger, never a leaf
@@ -227,18 +228,18 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
       stack.push_back(child);
     }
   }
-  out.bv_tests += bv_tests;
+  bv_tests_out += bv_tests;
 }
 
 /// Depth-first traversal of the BVTT below `start`, appending candidate face pairs (ordered min, max for
-/// self passes; (face of a, face of b) otherwise) to `out`: over the 4-wide view when the view has one.
-/// `stack` is scratch space.
+/// self passes; (face of a, face of b) otherwise) to `pairs` and adding the BV tests to `bv_tests`: over the
+/// 4-wide view when the view has one. `stack` is scratch space.
 template <class BV>
-void traverse_bvtt(const BvttView<BV>& v, BvttNode start, BvttStack& stack, TraversalOutput& out) {
+void traverse_bvtt(const BvttView<BV>& v, BvttNode start, BvttStack& stack, FacePairs& pairs, std::uint64_t& bv_tests) {
   if (v.wide())
-    traverse_bvtt_wide(v, start, stack.wide, out);
+    traverse_bvtt_wide(v, start, stack.wide, pairs, bv_tests);
   else
-    traverse_bvtt_binary(v, start, stack.binary, out);
+    traverse_bvtt_binary(v, start, stack.binary, pairs, bv_tests);
 }
 
 }  // namespace ccdlab

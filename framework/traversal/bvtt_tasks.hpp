@@ -3,7 +3,8 @@
 //   expand_breadth_first : the serial top — breadth-first from the root until a level holds ≥ `want` nodes
 //                          (self nodes open into 3 children, overlapping pair nodes into 2; leaf pairs found
 //                          on the way are candidates already)
-//   run_bvtt_tasks        : each task is a depth-first traversal below its node, into thread-local buffers
+//   run_bvtt_tasks        : each task is a depth-first traversal below its node, into its thread's part of
+//                          the candidate list
 #include <chrono>
 
 #include "framework/traversal/bvtt.hpp"
@@ -35,7 +36,7 @@ std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t wa
       if (!(*v.bv_a)[n.a].overlaps((*v.bv_b)[n.b])) continue;
       const BvhNode& B = nb[n.b];
       if (A.is_leaf() && B.is_leaf()) {
-        v.emit_leaf_pair(A, B, out.pairs);
+        v.emit_leaf_pair(A, B, out.pairs.part(0));
         continue;
       }
       opened = true;
@@ -54,26 +55,22 @@ std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t wa
 }
 
 /// Runs a depth-first traversal below each task on `threads` threads: dynamically (one task at a time to
-/// whichever thread is free) or in `threads` equal-count contiguous chunks fixed before the start. Returns the
-/// trace of merging the threads' candidates into `out`.
+/// whichever thread is free) or in `threads` equal-count contiguous chunks fixed before the start. Thread t
+/// appends to part t of out.pairs.
 template <class BV>
-PhaseTrace run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, int threads, Distribution dist,
-                          TraversalOutput& out, PhaseTrace& trace) {
+void run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, int threads, Distribution dist,
+                    TraversalOutput& out, PhaseTrace& trace) {
   struct Local {
-    TraversalOutput out;
-    BvttStack stack;  // traverse_bvtt appends to `out` and needs its own stack
+    std::uint64_t bv_tests = 0;
+    BvttStack stack;
   };
   std::vector<PerThread<Local>> local(threads);
+  out.pairs.use_parts(threads);
   parallel_tasks(tasks.size(), threads, dist, trace, [&](std::size_t i, int tid) {
     Local& l = local[tid].value;
-    traverse_bvtt(v, tasks[i], l.stack, l.out);
+    traverse_bvtt(v, tasks[i], l.stack, out.pairs.part(tid), l.bv_tests);
   });
-  std::vector<const FacePairs*> lists;
-  for (const auto& l : local) {
-    lists.push_back(&l.value.out.pairs);
-    out.bv_tests += l.value.out.bv_tests;
-  }
-  return append_candidates(out.pairs, lists, threads);
+  for (const auto& l : local) out.bv_tests += l.value.bv_tests;
 }
 
 }  // namespace ccdlab
@@ -94,9 +91,8 @@ inline void split_and_run(const TraversalPass& pass, int tasks_per_thread, Distr
     trace.serial_ms += serial;
     out.stats.serial_ms += serial;
     out.stats.tasks += tasks.size();
-    PhaseTrace merge = run_bvtt_tasks(view, tasks, pass.threads, dist, out, trace);
+    run_bvtt_tasks(view, tasks, pass.threads, dist, out, trace);
     traces.push_back(std::move(trace));
-    traces.push_back(std::move(merge));
   });
 }
 

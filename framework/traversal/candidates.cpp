@@ -1,7 +1,6 @@
 #include "framework/traversal/candidates.hpp"
 
 #include <algorithm>
-#include <cstring>
 
 namespace ccdlab {
 
@@ -19,23 +18,37 @@ void TraversalStats::add(const TraversalStats& o) {
   contour_edges += o.contour_edges;
 }
 
-PhaseTrace append_candidates(FacePairs& out, std::span<const FacePairs* const> lists, int threads) {
-  PhaseTrace trace{"merge_candidates", Distribution::dynamic, 0, {}, {}};
-  std::vector<std::size_t> offset(lists.size() + 1, out.size());
-  for (std::size_t i = 0; i < lists.size(); ++i) offset[i + 1] = offset[i] + lists[i]->size();
-  const std::size_t begin = out.size();
-  out.resize(offset.back());
-  // Chunks of the destination; a chunk copies from the one or more lists it overlaps.
-  constexpr std::size_t kChunk = std::size_t(1) << 16;
-  parallel_chunks(out.size() - begin, kChunk, threads, trace, [&](std::size_t b, std::size_t e, int) {
-    b += begin;
-    e += begin;
-    for (std::size_t i = 0; i < lists.size(); ++i) {
-      const std::size_t lo = std::max(b, offset[i]), hi = std::min(e, offset[i + 1]);
-      if (lo < hi) std::memcpy(out.data() + lo, lists[i]->data() + (lo - offset[i]), (hi - lo) * sizeof(FacePair));
-    }
-  });
-  return trace;
+void CandidateList::use_parts(int n) {
+  if (n > num_parts()) parts_.resize(std::size_t(n));
+}
+
+void CandidateList::reserve(int n, std::size_t pairs) {
+  use_parts(n);
+  for (int i = 0; i < n; ++i) {
+    FacePairs& p = part(i);
+    p.reserve(p.size() + std::min(pairs, kMaxReservedPairs));
+  }
+}
+
+std::size_t CandidateList::size() const {
+  std::size_t n = 0;
+  for (const auto& p : parts_) n += p.value.size();
+  return n;
+}
+
+void CandidateList::clear() {
+  for (auto& p : parts_) p.value.clear();
+}
+
+void CandidateList::release() {
+  for (auto& p : parts_) FacePairs().swap(p.value);
+}
+
+FacePairs CandidateList::flatten() const {
+  FacePairs all;
+  all.reserve(size());
+  for (const auto& p : parts_) all.insert(all.end(), p.value.begin(), p.value.end());
+  return all;
 }
 
 }  // namespace ccdlab

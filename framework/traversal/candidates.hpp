@@ -1,5 +1,6 @@
 #pragma once
 // What the broad phase hands to the narrow phase: candidate face pairs whose swept bounding volumes overlap.
+#include <algorithm>
 #include <compare>
 #include <cstdint>
 #include <span>
@@ -20,10 +21,54 @@ struct FacePair {
 /// A list of candidates. Growing it leaves the new entries uninitialized (they are written right after).
 using FacePairs = UninitializedVector<FacePair>;
 
-/// Appends per-thread candidate lists to `out`, in list order (what a serial merge gives), copying in parallel
-/// chunks; returns their trace (phase "merge_candidates"). Merged on one thread, n-body's 4.6M candidates
-/// (37 MB written, its pages first touched by that thread) took ~25 ms of a ~110 ms traversal at two threads.
-PhaseTrace append_candidates(FacePairs& out, std::span<const FacePairs* const> lists, int threads);
+/// The candidates of a step, in parts: one per thread that found them (part 0 also takes what a serial
+/// traversal or the serial top of a split BVTT finds). The candidate list is their concatenation in part
+/// order; which part a pair lands in depends on the schedule, so nothing may depend on the order (the
+/// contacts are sorted at the end of the step). Why parts, and room reserved ahead (n-body, 4.6M pairs,
+/// 37 MB; docs/narrow-phase.md, "Candidates in parts"):
+///   - merging the threads' lists into one copied 37 MB into fresh pages: ~7 ms of the 2-thread traversal;
+///   - a list that grows by doubling copies itself and first-touches about twice its final size: the
+///     1-thread traversal took 144 ms against 110 with the room reserved.
+/// The parts keep their memory across steps (clear); a simulation's later steps write into pages they have.
+class CandidateList {
+ public:
+  /// At least n parts; existing parts keep their pairs and memory. Not thread-safe: call it before the
+  /// threads write into part(0..n-1).
+  void use_parts(int n);
+  [[nodiscard]] int num_parts() const { return int(parts_.size()); }
+  [[nodiscard]] FacePairs& part(int i) { return parts_[std::size_t(i)].value; }
+  [[nodiscard]] const FacePairs& part(int i) const { return parts_[std::size_t(i)].value; }
+  /// Room for `pairs` more in each of the first n parts (created if missing), reserved as address space:
+  /// pages are touched only when written. A part can receive every candidate of the step, so each gets the
+  /// whole expectation; at most kMaxReservedPairs each (beyond that, the parts grow as they need).
+  void reserve(int n, std::size_t pairs);
+  static constexpr std::size_t kMaxReservedPairs = std::size_t(1) << 27;  // 1 GiB of address space
+
+  [[nodiscard]] std::size_t size() const;
+  [[nodiscard]] bool empty() const { return size() == 0; }
+  /// Every part emptied, memory kept for the next step.
+  void clear();
+  /// Every part emptied and its memory returned.
+  void release();
+  /// The concatenation, as one list (tests, analysis; the pipeline reads the parts in place).
+  [[nodiscard]] FacePairs flatten() const;
+  /// Calls f(std::span<const FacePair>) with the pairs of the concatenation in [begin, end), one call per
+  /// part it overlaps.
+  template <class F>
+  void for_each_span(std::size_t begin, std::size_t end, F&& f) const {
+    std::size_t offset = 0;
+    for (const auto& p : parts_) {
+      const std::size_t n = p.value.size(), lo = std::max(begin, offset), hi = std::min(end, offset + n);
+      if (lo < hi) f(std::span<const FacePair>(p.value.data() + (lo - offset), hi - lo));
+      offset += n;
+      if (offset >= end) break;
+    }
+  }
+
+ private:
+  // Padded: each thread writes its own part's size and pointers. Part 0 always exists.
+  std::vector<PerThread<FacePairs>> parts_ = std::vector<PerThread<FacePairs>>(1);
+};
 
 /// Work counters of a scheduler for one step (summed over passes).
 struct TraversalStats {
@@ -44,7 +89,7 @@ struct TraversalStats {
 };
 
 struct TraversalOutput {
-  FacePairs pairs;
+  CandidateList pairs;
   std::uint64_t bv_tests = 0;  ///< BV overlap tests performed (kept beside stats for the sequential kernels)
   TraversalStats stats;
 

@@ -111,7 +111,7 @@ void EmbreeScheduler::collect(const TraversalPass& pass, TraversalOutput& out, s
   with_bvtt_view(pass, [&](const auto& view) {
     if (!whole || culled) {  // see the header: ccdlab's own traversal
       BvttStack stack;
-      traverse_bvtt(view, pass.root, stack, out);
+      traverse_bvtt(view, pass.root, stack, out.pairs.part(0), out.bv_tests);
       return;
     }
     state_->ensure_device(pass.threads);
@@ -136,7 +136,7 @@ void EmbreeScheduler::collect(const TraversalPass& pass, TraversalOutput& out, s
     }
     std::sort(pairs.begin(), pairs.end());
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-    out.pairs.insert(out.pairs.end(), pairs.begin(), pairs.end());
+    out.pairs.part(0).insert(out.pairs.part(0).end(), pairs.begin(), pairs.end());
     out.bv_tests += tests;
   });
   const double ms = ms_between(t0, std::chrono::steady_clock::now());

@@ -46,11 +46,11 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
   const int threads = pass.threads;
   std::vector<PerThread<std::vector<FrontNode>>> next(tasks.size());  // padded: neighbours written concurrently
   struct Local {
-    FacePairs pairs;
     std::vector<BvttNode> stack;
     FrontCounters counters;
   };
   std::vector<PerThread<Local>> local(threads);
+  out.pairs.use_parts(threads);
   trace.serial_ms += ms_between(t_serial, Clock::now());
 
   with_bvtt_view(pass, [&](const auto& view) {
@@ -60,7 +60,8 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
       Local& l = local[tid].value;
       for (const Segment& s : tasks[t]) {
         const FrontNode* nodes = front.pieces[s.piece].data();
-        process_front(view, nodes + s.begin, nodes + s.end, params_.prune, piece, l.pairs, l.stack, l.counters);
+        process_front(view, nodes + s.begin, nodes + s.end, params_.prune, piece, out.pairs.part(tid), l.stack,
+                      l.counters);
       }
     });
   });
@@ -73,10 +74,8 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
     front.size += front.pieces[t].size();
   }
   if (front.size_after_rebuild == 0) front.size_after_rebuild = front.size;
-  std::vector<const FacePairs*> lists;
   for (int t = 0; t < threads; ++t) {
     const Local& l = local[t].value;
-    lists.push_back(&l.pairs);
     out.bv_tests += l.counters.bv_tests;
     out.stats.front_visited += l.counters.visited;
     out.stats.sprouted += l.counters.sprouted;
@@ -88,7 +87,6 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
   trace.serial_ms += ms_between(t_merge, Clock::now());
   out.stats.serial_ms += trace.serial_ms;
   traces.push_back(std::move(trace));
-  traces.push_back(append_candidates(out.pairs, lists, threads));
 }
 
 void FrontScheduler::release(int pass_id) { fronts_.erase(pass_id); }

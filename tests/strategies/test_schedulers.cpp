@@ -40,7 +40,7 @@ RunResult run(const MeshSequence& scene, PipelineStrategies s) {
   for (int i = 0; i < scene.num_steps(); ++i) {
     Positions x1 = scene.frame(i + 1);
     StepResult res = p.step(x0, x1);
-    auto c = p.last_candidates().pairs;
+    auto c = p.last_candidates().pairs.flatten();
     std::sort(c.begin(), c.end());
     EXPECT_EQ(std::adjacent_find(c.begin(), c.end()), c.end()) << "duplicate candidate at step " << i;
     r.candidates.push_back(std::move(c));
@@ -213,7 +213,7 @@ TEST(AdaptiveRestructuring, RebuildsDegradedSubtreesWithoutChangingAnswers) {
         std::vector<Index> faces;
         for (Index f = scene.bodies()[0].face_begin; f < scene.bodies()[0].face_end; ++f) faces.push_back(f);
         ASSERT_NO_THROW(validate_bvh(p.bvh(0), faces)) << "step " << i;
-        auto c = p.last_candidates().pairs;
+        auto c = p.last_candidates().pairs.flatten();
         std::sort(c.begin(), c.end());
         EXPECT_EQ(c, reference.candidates[i]) << "step " << i;
         EXPECT_EQ(contact_set_hash(r.contacts), reference.hashes[i]) << "step " << i;

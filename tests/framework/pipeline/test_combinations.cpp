@@ -246,13 +246,17 @@ TEST(MemoryBoundedSteps, StreamingSlicesGiveTheSameAnswer) {
 
 TEST(MemoryBoundedSteps, PlanStreamsOnlyAboveTheBudget) {
   MemoryBudget none(0);
-  EXPECT_FALSE(none.plan(1u << 30, 1000000).streamed);
+  const MemoryPlan unlimited = none.plan(1u << 30, 1000000);
+  EXPECT_FALSE(unlimited.streamed);
+  EXPECT_EQ(unlimited.expected_pairs, 1000000 * MemoryBudget::kFirstStepCandidatesPerFace) << "first-step guess";
+  none.record(1000, 0);
+  EXPECT_EQ(none.plan(1u << 30, 1000000).expected_pairs, 1250u) << "the last step's pairs and a quarter";
   MemoryBudget roomy(std::uint64_t(8) << 30);
-  EXPECT_FALSE(roomy.plan(std::uint64_t(1) << 30, 100000).streamed);  // 100K faces: ~100 MB predicted
+  EXPECT_FALSE(roomy.plan(std::uint64_t(1) << 30, 100000).streamed);  // 100K faces: ~51 MB predicted
   MemoryBudget tight(std::uint64_t(300) << 20);
-  const MemoryPlan p = tight.plan(std::uint64_t(200) << 20, 1000000);  // 1M faces: ~1 GB predicted, 100 MB left
+  const MemoryPlan p = tight.plan(std::uint64_t(200) << 20, 1000000);  // 1M faces: ~512 MB predicted, 100 MB left
   EXPECT_TRUE(p.streamed);
-  EXPECT_GE(p.slices, 16u * 10);
+  EXPECT_GE(p.slices, 16u * 5);
   EXPECT_EQ(p.flush_pairs, (std::uint64_t(100) << 20) / MemoryBudget::kBytesPerCandidate / 2);
   EXPECT_THROW((void)tight.plan(std::uint64_t(400) << 20, 10), Error);  // resident alone above the limit
   tight.record(1000, 0);  // measured: tiny steps now, no streaming needed

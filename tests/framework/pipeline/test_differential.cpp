@@ -59,7 +59,7 @@ TEST_P(Differential, SelfCollisionMatchesBruteForce) {
   for (unsigned seed = 1; seed <= 4; ++seed) {
     Frames f = random_step(g.positions, seed, 0.05);
     StepResult r = pipeline.step(f.x0, f.x1);
-    auto candidates = pipeline.last_candidates().pairs;
+    auto candidates = pipeline.last_candidates().pairs.flatten();
     std::sort(candidates.begin(), candidates.end());
     EXPECT_EQ(std::adjacent_find(candidates.begin(), candidates.end()), candidates.end()) << "duplicate candidate";
     EXPECT_EQ(candidates, brute_force_candidates(mesh, pipeline.rules(), pipeline.face_bvs())) << "seed " << seed;
@@ -89,7 +89,7 @@ TEST_P(Differential, ClothAgainstObstacleMatchesBruteForce) {
     x1[v] += Vec3(0.02 * u(rng), 0.02 * u(rng), -0.1 + 0.03 * u(rng));
   }
   StepResult r = pipeline.step(x0, x1);
-  auto candidates = pipeline.last_candidates().pairs;
+  auto candidates = pipeline.last_candidates().pairs.flatten();
   std::sort(candidates.begin(), candidates.end());
   EXPECT_EQ(candidates, brute_force_candidates(mesh, pipeline.rules(), pipeline.face_bvs()));
   auto expected = brute_force_contacts(mesh, pipeline.rules(), x0, x1, *pipeline.strategies().tester);

@@ -46,7 +46,7 @@ Gathered gather_one_step(CcdPipeline& pipeline, const MeshData& g, unsigned seed
   EXPECT_EQ(std::adjacent_find(out.ee.begin(), out.ee.end()), out.ee.end()) << "an EE pair was tested twice";
   for (const auto& p : out.vf) EXPECT_FALSE(contains_vertex(mesh.face(p.f), p.v));
   for (const auto& p : out.ee) EXPECT_FALSE(shares_vertex(mesh.edge(p.a), mesh.edge(p.b)));
-  for (const FacePair& p : pipeline.last_candidates().pairs) out.candidates.insert({p.a, p.b});
+  for (const FacePair& p : pipeline.last_candidates().pairs.flatten()) out.candidates.insert({p.a, p.b});
   if (x0_out) *x0_out = std::move(x0);
   if (x1_out) *x1_out = std::move(x1);
   return out;
