@@ -58,7 +58,7 @@ using WideBvs = std::vector<WideBounds<BV>>;
 
 /// Copies the binary volumes of wide node w's lanes into its bounds (after the binary refit).
 template <class BV>
-void refit_wide_node(const WideLayout& layout, const std::vector<BV>& bvs, Index w, WideBounds<BV>& out) {
+void refit_wide_node(const WideLayout& layout, const BvArray<BV>& bvs, Index w, WideBounds<BV>& out) {
   for (int j = 0; j < WideLayout::kWidth; ++j) {
     const Index c = layout.lanes[w].node[j];
     for (int i = 0; i < BV::num_axes; ++i) {

@@ -25,6 +25,7 @@
 #include "framework/mesh/tri_mesh.hpp"
 #include "framework/primitive/feature_pairs.hpp"
 #include "framework/util/parallel.hpp"
+#include "framework/util/uninitialized_vector.hpp"
 
 namespace ccdlab {
 
@@ -84,7 +85,7 @@ class FeatureBounds {
   [[nodiscard]] std::size_t memory_bytes() const { return vertex_.size() * sizeof(PaddedDop); }
 
  private:
-  std::vector<PaddedDop> vertex_;
+  UninitializedVector<PaddedDop> vertex_;  // update() writes every entry: growing it zeroes nothing
 };
 
 }  // namespace ccdlab

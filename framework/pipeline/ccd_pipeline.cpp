@@ -32,10 +32,10 @@ AnyWideBvs make_wide_bvs(int k) {
 
 AnyBvs make_bvs(int k) {
   switch (k) {
-    case 6: return std::vector<KDop<6>>{};
-    case 14: return std::vector<KDop<14>>{};
-    case 18: return std::vector<KDop<18>>{};
-    case 26: return std::vector<KDop<26>>{};
+    case 6: return BvArray<KDop<6>>{};
+    case 14: return BvArray<KDop<14>>{};
+    case 18: return BvArray<KDop<18>>{};
+    case 26: return BvArray<KDop<26>>{};
   }
   fail("bv.k: expected one of 6, 14, 18, 26, got {}", k);
 }
@@ -134,14 +134,14 @@ CcdPipeline::~CcdPipeline() = default;
 
 void CcdPipeline::build_hierarchies(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace) {
   for (BodyState& body : bodies_) {
-    const auto t0 = Clock::now();
     std::vector<Box3> boxes(body.faces.size());
-    for (std::size_t i = 0; i < body.faces.size(); ++i)
-      for (Index v : mesh_.face(body.faces[i])) {
-        boxes[i].grow(x_t0[v]);
-        boxes[i].grow(x_t1[v]);
-      }
-    trace.serial_ms += ms_since(t0);
+    parallel_chunks(body.faces.size(), kFaceChunk, strategies_.threads, trace, [&](std::size_t b, std::size_t e, int) {
+      for (std::size_t i = b; i < e; ++i)
+        for (Index v : mesh_.face(body.faces[i])) {
+          boxes[i].grow(x_t0[v]);
+          boxes[i].grow(x_t1[v]);
+        }
+    });
     body.bvh = strategies_.builder->build(body.faces, boxes, {strategies_.threads, &trace});
     if (body.bvh.nodes.empty()) continue;
     const auto t1 = Clock::now();
@@ -257,7 +257,7 @@ void CcdPipeline::refit_wide(BodyState& body, PhaseTrace& trace) {
   std::visit(
       [&](auto& node_wide) {
         using Bounds = typename std::decay_t<decltype(node_wide)>::value_type;
-        using Vec = std::vector<typename Bounds::Volume>;
+        using Vec = BvArray<typename Bounds::Volume>;
         const Vec& bvs = std::get<Vec>(body.node_bvs);
         node_wide.resize(layout.lanes.size());
         parallel_chunks(layout.lanes.size(), 4096, strategies_.threads, trace, [&](std::size_t b, std::size_t e, int) {

@@ -27,9 +27,9 @@ struct BvttNode {
 template <class BV>
 struct BvttView {
   const BvhTopology* bvh_a;
-  const std::vector<BV>* bv_a;
+  const BvArray<BV>* bv_a;
   const BvhTopology* bvh_b;  ///< == bvh_a for self-collision
-  const std::vector<BV>* bv_b;
+  const BvArray<BV>* bv_b;
   const TriMesh* mesh;
   bool self;  ///< self-collision: skip adjacent face pairs
   /// Normal-cone culling (self passes): topmost ancestor-or-self of each node whose self test is skipped this

@@ -17,7 +17,7 @@
 
 namespace ccdlab {
 
-using AnyBvs = std::variant<std::vector<KDop<6>>, std::vector<KDop<14>>, std::vector<KDop<18>>, std::vector<KDop<26>>>;
+using AnyBvs = std::variant<BvArray<KDop<6>>, BvArray<KDop<14>>, BvArray<KDop<18>>, BvArray<KDop<26>>>;
 /// The 4-wide bounds of the same hierarchy (bv.width: 4), same alternative as its AnyBvs.
 using AnyWideBvs = std::variant<WideBvs<KDop<6>>, WideBvs<KDop<14>>, WideBvs<KDop<18>>, WideBvs<KDop<26>>>;
 
@@ -51,7 +51,7 @@ void with_bvtt_view(const TraversalPass& pass, F&& f) {
   std::visit(
       [&](const auto& bvs_a) {
         using BV = typename std::decay_t<decltype(bvs_a)>::value_type;
-        const auto& bvs_b = std::get<std::vector<BV>>(*pass.bvs_b);
+        const auto& bvs_b = std::get<BvArray<BV>>(*pass.bvs_b);
         const Index* skip = pass.skip_root && !pass.skip_root->empty() ? pass.skip_root->data() : nullptr;
         BvttView<BV> view{pass.bvh_a, &bvs_a, pass.bvh_b, &bvs_b, pass.mesh, pass.self, skip};
         if (pass.wide_a && pass.wide_b) {

@@ -67,7 +67,7 @@ struct EmbreeScheduler::State {
   }
   /// (Re)builds Embree's BVH over the leaves of `bvh`, boxed by their k-DOPs' first three slabs.
   template <class BV>
-  void build(Side& s, const BvhTopology& bvh, const std::vector<BV>& bvs) {
+  void build(Side& s, const BvhTopology& bvh, const BvArray<BV>& bvs) {
     if (!s.scene) {
       s.scene = rtcNewScene(device);
       rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_LOW);  // rebuilt every step: a fast build

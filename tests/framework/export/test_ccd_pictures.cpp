@@ -71,8 +71,9 @@ TEST(ExportMesh, ContactCountsFollowTheFeaturesIncidentTriangles) {
 
 TEST(ExportBvh, ALevelHoldsThePolyhedraOfTheNodesAtThatDepth) {
   const BvhTopology t = four_leaves();
-  std::vector<KDop<6>> boxes(t.nodes.size());
+  BvArray<KDop<6>> boxes(t.nodes.size());  // constructs nothing: each box starts empty below
   for (std::size_t i = 0; i < boxes.size(); ++i) {
+    boxes[i] = KDop<6>();
     boxes[i].grow(Vec3(double(i), 0, 0));
     boxes[i].grow(Vec3(double(i) + 0.5, 1, 1));
   }

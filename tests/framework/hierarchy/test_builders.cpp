@@ -94,7 +94,7 @@ TEST(Refit, ParentsContainChildren) {
   std::vector<Index> faces(g.faces.size());
   for (std::size_t i = 0; i < faces.size(); ++i) faces[i] = Index(i);
   BvhTopology bvh = MedianBuilder().build(faces, face_boxes(g));
-  std::vector<KDop<14>> bvs;
+  BvArray<KDop<14>> bvs;
   refit(bvh, bvs, [&](Index f) {
     KDop<14> b;
     for (Index v : g.faces[f]) b.grow(g.positions[v]);
