@@ -22,7 +22,7 @@ namespace ccdlab {
 /// volumes assign every element, so growing the array constructs nothing: constructing n-body's 292,959
 /// empty K = 26 node volumes first took 9.5 ms on one thread, before the parallel refit overwrote them all.
 template <class BV>
-using BvArray = std::vector<BV, UnconstructedAllocator<BV>>;
+using BvArray = UnconstructedVector<BV>;
 
 struct BvhNode {
   Index left = -1;   ///< child index, -1 for a leaf

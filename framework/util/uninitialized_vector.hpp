@@ -1,6 +1,7 @@
 #pragma once
-// A std::vector whose resize() leaves new elements of trivial types uninitialized: for buffers that a kernel
-// fills right after growing them (the narrow phase's batches), where zero-filling first costs a pass over memory.
+// Vectors whose resize() does not value-initialize the new elements: for buffers that a kernel fills right
+// after growing them (the narrow phase's batches, candidate lists, bounding volumes), where zero-filling or
+// constructing first costs a pass over memory, on one thread.
 #include <memory>
 #include <type_traits>
 #include <utility>
@@ -8,20 +9,27 @@
 
 namespace ccdlab {
 
-template <class T>
-struct DefaultInitAllocator : std::allocator<T> {
+/// What `resize(n)` does to the new elements.
+enum class Growth {
+  default_init,   ///< default-initialize: nothing for trivial types, the default constructor otherwise
+  unconstructed,  ///< nothing at all, even where a default constructor exists (trivially copyable types only)
+};
+
+template <class T, Growth G>
+struct GrowthAllocator : std::allocator<T> {
+  static_assert(G == Growth::default_init || (std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>));
   template <class U>
   struct rebind {
-    using other = DefaultInitAllocator<U>;
+    using other = GrowthAllocator<U, G>;
   };
-  DefaultInitAllocator() = default;
+  GrowthAllocator() = default;
   template <class U>
-  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
+  GrowthAllocator(const GrowthAllocator<U, G>&) noexcept {}
 
-  /// `resize(n)` constructs with no arguments: default-initialize (no-op for trivial T) instead of zeroing.
+  /// `resize(n)` constructs with no arguments.
   template <class U>
-  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
-    ::new (static_cast<void*>(p)) U;
+  void construct(U* p) noexcept(G == Growth::unconstructed || std::is_nothrow_default_constructible_v<U>) {
+    if constexpr (G == Growth::default_init) ::new (static_cast<void*>(p)) U;
   }
   template <class U, class... Args>
   void construct(U* p, Args&&... args) {
@@ -30,28 +38,12 @@ struct DefaultInitAllocator : std::allocator<T> {
 };
 
 template <class T>
-using UninitializedVector = std::vector<T, DefaultInitAllocator<T>>;
+using UninitializedVector = std::vector<T, GrowthAllocator<T, Growth::default_init>>;
 
-/// For arrays of trivially copyable values every element of which is assigned before it is read, where even
-/// default-initializing runs a constructor (a k-DOP's writes an empty volume): `resize(n)` constructs nothing,
-/// so the pages are first touched by the (parallel) pass that fills them, not by one thread beforehand.
+/// For arrays every element of which is assigned before it is read, where even default-initializing runs a
+/// constructor (a k-DOP's writes an empty volume): the pages are first touched by the (parallel) pass that
+/// fills them, not by one thread beforehand.
 template <class T>
-struct UnconstructedAllocator : std::allocator<T> {
-  static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
-  template <class U>
-  struct rebind {
-    using other = UnconstructedAllocator<U>;
-  };
-  UnconstructedAllocator() = default;
-  template <class U>
-  UnconstructedAllocator(const UnconstructedAllocator<U>&) noexcept {}
-
-  template <class U>
-  void construct(U*) noexcept {}  // resize(n): the caller assigns every new element
-  template <class U, class... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
+using UnconstructedVector = std::vector<T, GrowthAllocator<T, Growth::unconstructed>>;
 
 }  // namespace ccdlab
