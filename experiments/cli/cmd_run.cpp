@@ -74,7 +74,7 @@ nlohmann::json run_experiment(const ExperimentConfig& config, const Registries& 
   Progress progress("ccdlab run", scene.num_steps(), o.progress && !table_on_terminal);
   std::vector<double> total_ms, build_ms, cones_ms, swept_ms, refit_ms, traverse_ms, narrow_ms, orphan_ms;
   std::uint64_t hash = contact_set_hash({}), vf = 0, ee = 0, bv_tests = 0, candidates = 0, vf_tests = 0, ee_tests = 0, orphan_pairs = 0, orphan_tests = 0,
-                tests_filtered = 0, tests_fallback = 0, peak_rss = 0, streamed_steps = 0;
+                tests_filtered = 0, tests_fallback = 0, peak_rss = 0, streamed_steps = 0, page_faults = 0;
   Positions x_t0 = scene.frame(0);
   for (int s = 0; s < scene.num_steps(); ++s) {
     Positions x_t1 = scene.frame(s + 1);
@@ -93,6 +93,7 @@ nlohmann::json run_experiment(const ExperimentConfig& config, const Registries& 
     tests_fallback += r.counters.tests_fallback;
     peak_rss = std::max(peak_rss, r.memory.peak_rss_bytes);
     streamed_steps += r.memory.slices > 0;
+    page_faults += r.memory.page_faults;
     total_ms.push_back(r.timings.total_ms);
     build_ms.push_back(r.timings.build_ms);
     cones_ms.push_back(r.timings.cones_ms);
@@ -139,7 +140,7 @@ nlohmann::json run_experiment(const ExperimentConfig& config, const Registries& 
                     {"tests_fallback", tests_fallback}}},
       {"hash", fmt::format("{:016x}", hash)},
       {"memory", {{"peak_rss_mb", double(peak_rss) / (1 << 20)}, {"limit_mb", double(config.memory_limit_bytes) / (1 << 20)},
-                  {"streamed_steps", streamed_steps}}},
+                  {"streamed_steps", streamed_steps}, {"page_faults", page_faults}}},
       {"config", config_json},
       {"git_revision", rev},
       {"results", config.output.dir}};

@@ -48,7 +48,8 @@ nlohmann::json step_json(const StepResult& r) {
           {"memory",
            {{"peak_rss_mb", double(r.memory.peak_rss_bytes) / (1 << 20)},
             {"limit_mb", double(r.memory.limit_bytes) / (1 << 20)},
-            {"streamed_slices", r.memory.slices}}},
+            {"streamed_slices", r.memory.slices},
+            {"page_faults", r.memory.page_faults}}},
           {"ms",
            {{"total", t.total_ms},
             {"build", t.build_ms},
@@ -63,17 +64,18 @@ nlohmann::json step_json(const StepResult& r) {
 std::string csv_header() {
   return "bv_tests,candidate_pairs,vf_pairs,ee_pairs,orphan_vf,orphan_ee,vf_tests,ee_tests,orphan_tests,tests_filtered,"
          "tests_fallback,kdop_culled,plane_culled,split_culled,contacts_vf,contacts_ee,"
-         "build_ms,swept_bv_ms,refit_ms,cones_ms,traverse_ms,narrow_ms,orphan_ms,total_ms,peak_rss_mb,streamed_slices,hash";
+         "build_ms,swept_bv_ms,refit_ms,cones_ms,traverse_ms,narrow_ms,orphan_ms,total_ms,peak_rss_mb,streamed_slices,page_faults,hash";
 }
 
 std::string csv_row(const StepResult& r, std::uint64_t step_hash) {
   const StepCounters& c = r.counters;
   const StepTimings& t = r.timings;
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.1f},{},{:016x}",
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.1f},{},{},{:016x}",
                      c.bv_tests, c.candidate_pairs, c.vf_pairs, c.ee_pairs, c.orphan_vf, c.orphan_ee, c.vf_tests,
                      c.ee_tests, c.orphan_tests, c.tests_filtered, c.tests_fallback, c.kdop_culled, c.plane_culled, c.split_culled,
                      c.contacts_vf, c.contacts_ee, t.build_ms, t.swept_bv_ms, t.refit_ms, t.cones_ms, t.traverse_ms, t.narrow_ms, t.orphan_ms,
-                     t.total_ms, double(r.memory.peak_rss_bytes) / (1 << 20), r.memory.slices, step_hash);
+                     t.total_ms, double(r.memory.peak_rss_bytes) / (1 << 20), r.memory.slices,
+                     r.memory.page_faults, step_hash);
 }
 
 std::string contact_row(const Contact& c, const Positions& x_t0, const Positions& x_t1) {

@@ -321,6 +321,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   StepTimings& tm = result.timings;
   const auto t_start = Clock::now();
   reset_peak_rss();  // this step's peak, not the run's
+  const std::uint64_t faults_at_start = minor_page_faults();
 
   auto t = Clock::now();
   if (!built_) {
@@ -407,6 +408,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   result.traces.push_back(PhaseTrace{"sort_contacts", Distribution::dynamic, ms_since(t), {}, {}});  // serial
   tm.total_ms = ms_since(t_start);
   result.memory.peak_rss_bytes = peak_rss_bytes();
+  result.memory.page_faults = minor_page_faults() - faults_at_start;
   return result;
 }
 

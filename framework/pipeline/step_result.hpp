@@ -35,6 +35,7 @@ struct StepMemory {
   std::uint64_t peak_rss_bytes = 0;  ///< the process's peak resident memory during the step (0 = unknown)
   std::uint64_t limit_bytes = 0;     ///< memory_limit (0 = none)
   std::uint64_t slices = 0;          ///< BVTT slices per pass when streamed, 0 when not
+  std::uint64_t page_faults = 0;     ///< minor page faults of the process during the step (new pages touched)
 };
 
 struct StepResult {

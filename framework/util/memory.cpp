@@ -5,6 +5,7 @@
 #include <fstream>
 #include <string_view>
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "framework/util/error.hpp"
@@ -41,6 +42,11 @@ std::uint64_t available_memory_bytes() {
 
 std::uint64_t current_rss_bytes() { return proc_status_kb("VmRSS"); }
 std::uint64_t peak_rss_bytes() { return proc_status_kb("VmHWM"); }
+
+std::uint64_t minor_page_faults() {
+  rusage usage{};
+  return getrusage(RUSAGE_SELF, &usage) == 0 ? std::uint64_t(usage.ru_minflt) : 0;
+}
 
 void reset_peak_rss() {
   std::ofstream out("/proc/self/clear_refs");

@@ -15,6 +15,10 @@ std::uint64_t current_rss_bytes();
 std::uint64_t peak_rss_bytes();
 void reset_peak_rss();
 
+/// Minor page faults of this process so far (getrusage), all threads: each is a first touch of a new page. On
+/// some VMs one costs microseconds (docs/narrow-phase.md, "Memory touched once"), so a step reports its own.
+std::uint64_t minor_page_faults();
+
 /// "8GiB", "512MiB", "1.5G", "2000000000" (bytes) or "60%" (of available_memory_bytes()); "0" or "none" = no
 /// limit (returns 0). Throws Error naming `what` on anything else.
 std::uint64_t parse_memory_size(const std::string& text, const std::string& what);

@@ -81,7 +81,9 @@ TEST(BodyFiles, ClothOnAStillObstacleMatchesBruteForce) {
           const bool a_floor = c.vertices[0] >= floor.vertex_begin;
           const bool b_floor = c.vertices[c.kind == ContactKind::vf ? 1 : 2] >= floor.vertex_begin;
           EXPECT_FALSE(a_floor && b_floor) << "the obstacle is never tested against itself";
-          if (!cloth_self) EXPECT_NE(a_floor, b_floor) << "cloth self-collision is off";
+          if (!cloth_self) {
+            EXPECT_NE(a_floor, b_floor) << "cloth self-collision is off";
+          }
         }
         total += r.contacts.size();
       }
