@@ -25,11 +25,13 @@ using FacePairs = UninitializedVector<FacePair>;
 /// traversal or the serial top of a split BVTT finds). The candidate list is their concatenation in part
 /// order; which part a pair lands in depends on the schedule, so nothing may depend on the order (the
 /// contacts are sorted at the end of the step). Why parts, and room reserved ahead (n-body, 4.6M pairs,
-/// 37 MB; docs/narrow-phase.md, "Candidates in parts"):
+/// 37 MB; docs/narrow-phase.md, "Memory touched once"):
 ///   - merging the threads' lists into one copied 37 MB into fresh pages: ~7 ms of the 2-thread traversal;
 ///   - a list that grows by doubling copies itself and first-touches about twice its final size: the
 ///     1-thread traversal took 144 ms against 110 with the room reserved.
-/// The parts keep their memory across steps (clear); a simulation's later steps write into pages they have.
+/// clear() keeps the parts' memory for the next step. The pipeline does that only without a memory limit:
+/// under one (the default, 80%) it releases them at each step's start, so the budget's resident measure does
+/// not count last step's candidates.
 class CandidateList {
  public:
   /// At least n parts; existing parts keep their pairs and memory. Not thread-safe: call it before the
