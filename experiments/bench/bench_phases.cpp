@@ -62,14 +62,7 @@ void BM_Traverse(benchmark::State& state) {
   (void)p->step(f.x0, f.x1);  // builds and refits
   auto scheduler = scheduler_registry().make({"sequential", {}});
   const BvhTopology& bvh = p->bvh(0);
-  AnyBvs node_bvs = make_bvs(int(state.range(0)));
-  std::visit(
-      [&](auto& nb) {
-        using Vec = std::decay_t<decltype(nb)>;
-        const Vec& leaf = std::get<Vec>(p->face_bvs());
-        refit(bvh, nb, [&](Index face) { return leaf[face]; });
-      },
-      node_bvs);
+  const AnyBvs& node_bvs = p->node_bvs(0);
   TraversalPass pass{0, &p->mesh(), &bvh, &node_bvs, &bvh, &node_bvs, true, 1};
   std::vector<PhaseTrace> traces;
   TraversalOutput out;

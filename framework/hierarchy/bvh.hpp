@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "framework/geometry/kdop.hpp"
@@ -98,12 +99,16 @@ void replace_subtree(BvhTopology& bvh, Index root, const BvhTopology& sub);
 /// Faces under a node (pre-order range scan).
 std::vector<Index> subtree_faces(const BvhTopology& bvh, Index root);
 
-/// Refits node i from its children (inner node) or from leaf_bv(face) (leaf).
+/// The leaf_bv of a refit whose leaves hold their volumes already (the pipeline writes the swept volumes of the
+/// faces straight into the leaves, so that they are not stored twice): only inner nodes are refit.
+struct LeavesInPlace {};
+
+/// Refits node i from its children (inner node) or from leaf_bv(face) (leaf; kept as it is for LeavesInPlace).
 template <class BV, class LeafBv>
 void refit_node(const BvhTopology& bvh, BvArray<BV>& bvs, Index i, LeafBv&& leaf_bv) {
   const BvhNode& n = bvh.nodes[i];
   if (n.is_leaf()) {
-    bvs[i] = leaf_bv(n.face);
+    if constexpr (!std::is_same_v<std::remove_cvref_t<LeafBv>, LeavesInPlace>) bvs[i] = leaf_bv(n.face);
   } else {
     bvs[i] = bvs[n.left];
     bvs[i].merge(bvs[n.right]);

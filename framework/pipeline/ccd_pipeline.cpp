@@ -18,6 +18,19 @@ constexpr std::size_t kCandidateChunk = 512;  // 128 before: n-body's narrow pha
 constexpr std::size_t kOrphanChunk = 2048;
 constexpr std::size_t kFaceChunk = 2048;
 
+/// The swept k-DOP of face f over the step: its 3 vertices at t0 and at t1, inflated by the thickness.
+template <class BV>
+struct SweptFaceBv {
+  const TriMesh& mesh;
+  const Positions& x0;
+  const Positions& x1;
+  double thickness;
+  BV operator()(Index f) const {
+    const Face& t = mesh.face(f);
+    return swept_triangle_bv<BV>(x0[t[0]], x0[t[1]], x0[t[2]], x1[t[0]], x1[t[1]], x1[t[2]], thickness);
+  }
+};
+
 }  // namespace
 
 AnyWideBvs make_wide_bvs(int k) {
@@ -47,13 +60,10 @@ void compute_face_bvs(const TriMesh& mesh, const Positions& x0, const Positions&
       [&](auto& bvs) {
         using BV = typename std::decay_t<decltype(bvs)>::value_type;
         bvs.resize(mesh.num_faces());
+        const SweptFaceBv<BV> swept{mesh, x0, x1, thickness};
         parallel_chunks(std::size_t(mesh.num_faces()), kFaceChunk, threads, trace ? *trace : unused,
                         [&](std::size_t b, std::size_t e, int) {
-                          for (std::size_t f = b; f < e; ++f) {
-                            const Face& t = mesh.face(Index(f));
-                            bvs[f] = swept_triangle_bv<BV>(x0[t[0]], x0[t[1]], x0[t[2]], x1[t[0]], x1[t[1]],
-                                                           x1[t[2]], thickness);
-                          }
+                          for (std::size_t f = b; f < e; ++f) bvs[f] = swept(Index(f));
                         });
       },
       out);
@@ -68,12 +78,11 @@ std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std
       std::visit([](const auto& vec) { return std::uint64_t(sizeof(vec[0])); }, make_wide_bvs(k));
   // One wide node per inner node (f − 1): its lanes and bounds, plus a slot per node.
   const std::uint64_t wide = width == 4 ? f * (sizeof(WideLayout::Lanes) + wide_bounds) + 2 * f * sizeof(Index) : 0;
-  const std::uint64_t face_bvs = f * bv;
   const std::uint64_t feature_boxes = v * sizeof(PaddedDop);
   const std::uint64_t ownership = (v + e) * sizeof(Index) + f;
   const std::uint64_t orphans = std::uint64_t(orphan_pairs) * sizeof(EdgeEdgePair);
   const std::uint64_t frames = 2 * v * sizeof(Vec3);
-  return bvh + wide + face_bvs + feature_boxes + ownership + orphans + frames;
+  return bvh + wide + feature_boxes + ownership + orphans + frames;
 }
 
 CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, PipelineStrategies strategies)
@@ -85,7 +94,6 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
                 const int b = rules_.body_of_face(f);
                 return rules_.bodies_interact(b, b);
               }),
-      face_bvs_(make_bvs(strategies_.k)),
       budget_(strategies_.memory_limit, strategies_.stream_slices) {
   if (strategies_.threads < 1 || strategies_.threads > kMaxThreads)
     fail("threads: expected an integer from 1 to {}, got {}", kMaxThreads, strategies_.threads);
@@ -185,8 +193,7 @@ std::uint64_t CcdPipeline::restructure(const Positions& x_t0, const Positions& x
   for (BodyState& body : bodies_) {
     std::visit(
         [&](auto& node_bvs) {
-          using Vec = std::decay_t<decltype(node_bvs)>;
-          const Vec& leaf = std::get<Vec>(face_bvs_);
+          using BV = typename std::decay_t<decltype(node_bvs)>::value_type;
           BvhTopology& bvh = body.bvh;
           const std::size_t units = body.restructure_roots.size();
           std::vector<char> degraded(units, 0);
@@ -218,9 +225,10 @@ std::uint64_t CcdPipeline::restructure(const Positions& x_t0, const Positions& x
             const Index r = body.restructure_roots[u];
             // A new topology version: the refit plan, normal cones and fronts are cut again from it.
             replace_subtree(bvh, r, replacement[u]);
-            const auto leaf_bv = [&](Index f) { return leaf[f]; };
-            refit_subtree(bvh, node_bvs, r, leaf_bv);
-            for (Index p = bvh.nodes[r].parent; p >= 0; p = bvh.nodes[p].parent) refit_node(bvh, node_bvs, p, leaf_bv);
+            // Its leaves now hold other faces: their swept volumes are computed again.
+            refit_subtree(bvh, node_bvs, r, SweptFaceBv<BV>{mesh_, x_t0, x_t1, strategies_.tester->thickness()});
+            for (Index p = bvh.nodes[r].parent; p >= 0; p = bvh.nodes[p].parent)
+              refit_node(bvh, node_bvs, p, LeavesInPlace{});
             body.quality_ref[u] = subtree_quality(bvh, node_bvs, r);
             ++rebuilt;
           }
@@ -231,15 +239,28 @@ std::uint64_t CcdPipeline::restructure(const Positions& x_t0, const Positions& x
   return rebuilt;
 }
 
+void CcdPipeline::sweep_leaves(BodyState& body, const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace) {
+  std::visit(
+      [&](auto& node_bvs) {
+        using BV = typename std::decay_t<decltype(node_bvs)>::value_type;
+        const BvhTopology& bvh = body.bvh;
+        node_bvs.resize(bvh.nodes.size());  // uninitialised: this pass touches every page first, in parallel
+        const SweptFaceBv<BV> swept{mesh_, x_t0, x_t1, strategies_.tester->thickness()};
+        parallel_chunks(bvh.nodes.size(), 2 * kFaceChunk, strategies_.threads, trace,
+                        [&](std::size_t b, std::size_t e, int) {
+                          for (std::size_t i = b; i < e; ++i)
+                            if (bvh.nodes[i].is_leaf()) node_bvs[i] = swept(bvh.nodes[i].face);
+                        });
+      },
+      body.node_bvs);
+}
+
 void CcdPipeline::refit_body(BodyState& body, PhaseTrace& trace) {
   std::visit(
       [&](auto& node_bvs) {
-        using Vec = std::decay_t<decltype(node_bvs)>;
-        const Vec& leaf = std::get<Vec>(face_bvs_);
         const BvhTopology& bvh = body.bvh;
         const RefitPlan& plan = bvh.refit_plan();  // cut again whenever restructuring changed the topology
-        const auto leaf_bv = [&](Index f) { return leaf[f]; };
-        node_bvs.resize(bvh.nodes.size());
+        const LeavesInPlace leaf_bv;                // written by sweep_leaves
         parallel_chunks(plan.subtrees.size(), 1, strategies_.threads, trace, [&](std::size_t b, std::size_t e, int) {
           for (std::size_t s = b; s < e; ++s) refit_subtree(bvh, node_bvs, plan.subtrees[s], leaf_bv);
         });
@@ -333,7 +354,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
 
   t = Clock::now();
   PhaseTrace swept{"swept_bv", Distribution::dynamic, 0, {}, {}};
-  compute_face_bvs(mesh_, x_t0, x_t1, strategies_.tester->thickness(), face_bvs_, threads, &swept);
+  for (BodyState& body : bodies_) sweep_leaves(body, x_t0, x_t1, swept);
   result.traces.push_back(std::move(swept));
   tm.swept_bv_ms = ms_since(t);
 

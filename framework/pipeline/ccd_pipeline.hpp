@@ -61,13 +61,12 @@ class CcdPipeline {
   [[nodiscard]] const Representatives& representatives() const { return narrow_.representatives(); }
   [[nodiscard]] const OrphanSet& orphans() const { return narrow_.representatives().orphans(); }
   [[nodiscard]] const PipelineStrategies& strategies() const { return strategies_; }
-  /// The swept BV of every face in the last step (index = face id).
-  [[nodiscard]] const AnyBvs& face_bvs() const { return face_bvs_; }
   /// Candidate face pairs of the last step (unsorted) and their BV test count.
   [[nodiscard]] const TraversalOutput& last_candidates() const { return candidates_; }
   /// BVH of body b (empty before the first step).
   [[nodiscard]] const BvhTopology& bvh(int body) const { return bodies_[body].bvh; }
-  /// The volumes of body b's BVH nodes, refit in the last step (index = node).
+  /// The volumes of body b's BVH nodes, refit in the last step (index = node; a leaf holds its face's swept
+  /// volume, which the pipeline stores nowhere else).
   [[nodiscard]] const AnyBvs& node_bvs(int body) const { return bodies_[body].node_bvs; }
   /// The traversal passes (self passes first, then body pairs), whose ids a stateful scheduler keys on.
   [[nodiscard]] const std::vector<TraversalPass>& passes() const { return passes_; }
@@ -91,6 +90,9 @@ class CcdPipeline {
   /// Rebuilds the degraded sub-trees of every body; returns how many were rebuilt.
   std::uint64_t restructure(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
   void build_hierarchies(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
+  /// The swept volume of every face, written into its leaf of the body's node volumes.
+  void sweep_leaves(BodyState& body, const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
+  /// The inner nodes' volumes, bottom-up from the leaves that sweep_leaves wrote.
   void refit_body(BodyState& body, PhaseTrace& trace);
   void refit_wide(BodyState& body, PhaseTrace& trace);
   /// BVTT traversal of every pass and the narrow phase of its candidates: at once, or slice by slice when the
@@ -109,7 +111,6 @@ class CcdPipeline {
   NarrowPhase narrow_;
   std::vector<BodyState> bodies_;
   std::vector<TraversalPass> passes_;
-  AnyBvs face_bvs_;
   std::vector<Index> face_patch_;  ///< normal cones: the skipped patch (BVH node) holding each face this step, or −1
   TraversalOutput candidates_;
   MemoryBudget budget_;
@@ -117,9 +118,10 @@ class CcdPipeline {
   bool record_tested_ = false;
 };
 
-/// Bytes a pipeline over `mesh` will add before its first traversal: the BVHs and their volumes (and their 4-wide
-/// view for width 4), the swept face volumes, the feature bounds, the ownership, the orphan set and the two frames of a step. Checked against
-/// memory_limit when a pipeline is made, so that a run too large for the machine is refused before it starts.
+/// Bytes a pipeline over `mesh` will add before its first traversal: the BVHs and their volumes (the leaves' are
+/// the faces' swept volumes; and their 4-wide view for width 4), the feature bounds, the ownership, the orphan set
+/// and the two frames of a step. Checked against memory_limit when a pipeline is made, so that a run too large for
+/// the machine is refused before it starts.
 std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std::size_t orphan_pairs);
 
 /// An AnyBvs holding an empty vector of KDop<k>; throws Error unless k ∈ {6, 14, 18, 26}.
@@ -127,7 +129,8 @@ AnyBvs make_bvs(int k);
 AnyWideBvs make_wide_bvs(int k);
 
 /// Swept k-DOP of every face of the mesh over the step (inflated by thickness), on `threads` threads; the
-/// task costs go to `trace` when given.
+/// task costs go to `trace` when given. The pipeline writes these volumes into its BVH leaves instead; this
+/// face-indexed array is for references (brute force) and benchmarks.
 void compute_face_bvs(const TriMesh& mesh, const Positions& x_t0, const Positions& x_t1, double thickness, AnyBvs& out,
                       int threads = 1, PhaseTrace* trace = nullptr);
 

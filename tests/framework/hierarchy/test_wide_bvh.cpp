@@ -51,7 +51,9 @@ TEST(WideBvh, LanesAreTheGrandchildren) {
     const WideLayout::Lanes& l = w.lanes[inner];
     for (std::size_t j = 0; j < 4; ++j) {
       EXPECT_EQ(l.node[j], j < expected.size() ? expected[j] : -1) << "node " << i << " lane " << j;
-      if (j < expected.size()) EXPECT_EQ(l.slot[j], w.slot[l.node[j]]);
+      if (j < expected.size()) {
+        EXPECT_EQ(l.slot[j], w.slot[l.node[j]]);
+      }
     }
     ++inner;
   }
