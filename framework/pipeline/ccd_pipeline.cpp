@@ -294,42 +294,52 @@ void CcdPipeline::refit_wide(BodyState& body, PhaseTrace& trace) {
       body.node_wide);
 }
 
+/// One thread's narrow-phase state over a parallel loop: what it found and counted, and its batch memory.
+struct CcdPipeline::NarrowLocal {
+  std::vector<Contact> contacts;
+  NarrowCounters counters;
+  NarrowScratch scratch;
+  std::vector<VertexFacePair> tested_vf;
+  std::vector<EdgeEdgePair> tested_ee;
+};
+
+template <class Gather>
+void CcdPipeline::narrow_chunk(NarrowLocal& l, Gather&& gather) {
+  FeatureBatch& batch = l.scratch.batch;
+  batch.clear();
+  const auto t = Clock::now();
+  gather(batch, l.counters);
+  l.counters.gather_ns += std::uint64_t(ms_since(t) * 1e6);
+  if (record_tested_) {
+    l.tested_vf.insert(l.tested_vf.end(), batch.vf.begin(), batch.vf.end());
+    l.tested_ee.insert(l.tested_ee.end(), batch.ee.begin(), batch.ee.end());
+  }
+  narrow_.run(l.scratch, l.contacts, l.counters);
+}
+
+void CcdPipeline::merge_narrow(const std::vector<PerThread<NarrowLocal>>& local, StepResult& result,
+                               PhaseTrace& trace) {
+  // In thread order; the final sort makes the result independent of the schedule.
+  const auto t0 = Clock::now();
+  for (const auto& per_thread : local) {
+    const NarrowLocal& l = per_thread.value;
+    result.contacts.insert(result.contacts.end(), l.contacts.begin(), l.contacts.end());
+    result.counters += l.counters;
+    result.tested_vf.insert(result.tested_vf.end(), l.tested_vf.begin(), l.tested_vf.end());
+    result.tested_ee.insert(result.tested_ee.end(), l.tested_ee.begin(), l.tested_ee.end());
+  }
+  trace.serial_ms += ms_since(t0);
+}
+
 template <class Gather>
 void CcdPipeline::narrow_in_parallel(std::size_t n, std::size_t chunk, const char* phase, StepResult& result,
                                      Gather&& gather) {
-  const int threads = strategies_.threads;
-  struct Local {
-    std::vector<Contact> contacts;
-    NarrowCounters counters;
-    NarrowScratch scratch;
-    std::vector<VertexFacePair> tested_vf;
-    std::vector<EdgeEdgePair> tested_ee;
-  };
-  std::vector<PerThread<Local>> local(threads);
+  std::vector<PerThread<NarrowLocal>> local(strategies_.threads);
   PhaseTrace trace{phase, Distribution::dynamic, 0, {}, {}};
-  parallel_chunks(n, chunk, threads, trace, [&](std::size_t b, std::size_t e, int tid) {
-    Local& l = local[tid].value;
-    FeatureBatch& batch = l.scratch.batch;
-    batch.clear();
-    const auto t = Clock::now();
-    gather(b, e, batch, l.counters);
-    l.counters.gather_ns += std::uint64_t(ms_since(t) * 1e6);
-    if (record_tested_) {
-      l.tested_vf.insert(l.tested_vf.end(), batch.vf.begin(), batch.vf.end());
-      l.tested_ee.insert(l.tested_ee.end(), batch.ee.begin(), batch.ee.end());
-    }
-    narrow_.run(l.scratch, l.contacts, l.counters);
+  parallel_chunks(n, chunk, strategies_.threads, trace, [&](std::size_t b, std::size_t e, int tid) {
+    narrow_chunk(local[tid].value, [&](FeatureBatch& batch, NarrowCounters& c) { gather(b, e, batch, c); });
   });
-  // Merge in thread order; the final sort makes the result independent of the schedule.
-  const auto t0 = Clock::now();
-  for (int t = 0; t < threads; ++t) {
-    const Local& lt = local[t].value;
-    result.contacts.insert(result.contacts.end(), lt.contacts.begin(), lt.contacts.end());
-    result.counters += lt.counters;
-    result.tested_vf.insert(result.tested_vf.end(), lt.tested_vf.begin(), lt.tested_vf.end());
-    result.tested_ee.insert(result.tested_ee.end(), lt.tested_ee.begin(), lt.tested_ee.end());
-  }
-  trace.serial_ms += ms_since(t0);
+  merge_narrow(local, result, trace);
   result.traces.push_back(std::move(trace));
 }
 
@@ -480,9 +490,38 @@ void CcdPipeline::traverse_and_test(const MemoryPlan& plan, StepResult& result) 
   if (!plan.streamed) {
     const auto t = Clock::now();
     candidates_.pairs.reserve(strategies_.threads, plan.expected_pairs);
+    // The narrow phase takes the candidates as the traversal finds them (TraversalOutput::hand_over), on
+    // the same thread; its time there is counted as narrow, not traversal (the threads' mean: they run at once).
+    const int threads = strategies_.threads;
+    std::vector<PerThread<NarrowLocal>> local(threads);
+    struct Taken {
+      std::uint64_t pairs = 0;
+      double ms = 0;
+    };
+    std::vector<PerThread<Taken>> taken(threads);
+    if (!keep_candidates_)
+      candidates_.consumer = [&](int tid, std::span<const FacePair> pairs) {
+        const auto tc = Clock::now();
+        for (std::size_t b = 0; b < pairs.size(); b += kCandidateChunk) {
+          const auto piece = pairs.subspan(b, std::min(kCandidateChunk, pairs.size() - b));
+          narrow_chunk(local[tid].value, [&](FeatureBatch& batch, NarrowCounters&) { narrow_.gather(piece, batch); });
+        }
+        taken[tid].value.pairs += pairs.size();
+        taken[tid].value.ms += ms_since(tc);
+      };
     for (const TraversalPass& pass : passes_) strategies_.scheduler->collect(pass, candidates_, result.traces);
-    traverse_ms = ms_since(t);
-    test_candidates(result);
+    candidates_.consumer = nullptr;
+    double narrow_ms = 0;
+    for (const auto& tk : taken) {
+      result.counters.candidate_pairs += tk.value.pairs;
+      narrow_ms += tk.value.ms / threads;
+    }
+    PhaseTrace trace{"narrow_in_traversal", Distribution::dynamic, 0, {}, {}};  // its tasks are the traversal's
+    merge_narrow(local, result, trace);
+    result.traces.push_back(std::move(trace));
+    traverse_ms = ms_since(t) - narrow_ms;
+    result.timings.narrow_ms += narrow_ms;
+    test_candidates(result);  // what is left in the parts
   } else {
     // Each pass cut into slices (the BVTT nodes of one breadth-first level, BV tests counted, leaf pairs met
     // on the way kept as candidates); each slice traversed on its own and its scheduler state (a front)
@@ -518,6 +557,11 @@ void CcdPipeline::traverse_and_test(const MemoryPlan& plan, StepResult& result) 
   result.traversal.cone_culled = culled;
   result.traversal.contour_edges = edges;
   result.timings.traverse_ms = traverse_ms;
+}
+
+const TraversalOutput& CcdPipeline::last_candidates() const {
+  if (!keep_candidates_) fail("last_candidates: the pipeline keeps the candidates only after keep_candidates(true)");
+  return candidates_;
 }
 
 std::size_t CcdPipeline::memory_bytes() const {

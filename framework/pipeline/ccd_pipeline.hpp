@@ -61,8 +61,14 @@ class CcdPipeline {
   [[nodiscard]] const Representatives& representatives() const { return narrow_.representatives(); }
   [[nodiscard]] const OrphanSet& orphans() const { return narrow_.representatives().orphans(); }
   [[nodiscard]] const PipelineStrategies& strategies() const { return strategies_; }
-  /// Candidate face pairs of the last step (unsorted) and their BV test count.
-  [[nodiscard]] const TraversalOutput& last_candidates() const { return candidates_; }
+  /// Keep every candidate of a step for last_candidates() (tests, the quality meter). Off by default: the
+  /// narrow phase takes the candidates while the traversal finds them, and no list holds them all.
+  void keep_candidates(bool on) { keep_candidates_ = on; }
+  /// How many candidates a thread gathers before the narrow phase takes them (TraversalOutput::hand_over).
+  void set_hand_over_pairs(std::size_t pairs) { candidates_.hand_over_pairs = std::max<std::size_t>(1, pairs); }
+  /// Candidate face pairs of the last step (unsorted) and their BV test count; throws Error unless
+  /// keep_candidates(true) was called before the step.
+  [[nodiscard]] const TraversalOutput& last_candidates() const;
   /// BVH of body b (empty before the first step).
   [[nodiscard]] const BvhTopology& bvh(int body) const { return bodies_[body].bvh; }
   /// The volumes of body b's BVH nodes, refit in the last step (index = node; a leaf holds its face's swept
@@ -102,6 +108,11 @@ class CcdPipeline {
   void test_orphans(StepResult& result);
   /// The narrow phase over `n` items in chunks on every thread: `gather(begin, end, batch)` puts a chunk's
   /// feature pairs into the batch, which is then culled and tested; contacts and counters merged in thread order.
+  struct NarrowLocal;
+  /// One chunk on one thread: `gather(batch, counters)` fills the batch, which is then culled and tested.
+  template <class Gather>
+  void narrow_chunk(NarrowLocal& local, Gather&& gather);
+  void merge_narrow(const std::vector<PerThread<NarrowLocal>>& local, StepResult& result, PhaseTrace& trace);
   template <class Gather>
   void narrow_in_parallel(std::size_t n, std::size_t chunk, const char* phase, StepResult& result, Gather&& gather);
 
@@ -116,6 +127,7 @@ class CcdPipeline {
   MemoryBudget budget_;
   bool built_ = false;
   bool record_tested_ = false;
+  bool keep_candidates_ = false;
 };
 
 /// Bytes a pipeline over `mesh` will add before its first traversal: the BVHs and their volumes (the leaves' are

@@ -36,6 +36,7 @@ QualityMeter::QualityMeter(const TriMesh& mesh, std::vector<Body> bodies, Pipeli
   for (const Body& b : bodies)
     if (b.kind != BodyKind::cloth) std::fill(obstacle_face_.begin() + b.face_begin, obstacle_face_.begin() + b.face_end, 1);
   pipeline_ = std::make_unique<CcdPipeline>(mesh, std::move(bodies), std::move(strategies));
+  pipeline_->keep_candidates(true);  // measure() reads them
 }
 
 FrameQuality QualityMeter::measure(const Positions& x) {

@@ -56,7 +56,7 @@ std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t wa
 
 /// Runs a depth-first traversal below each task on `threads` threads: dynamically (one task at a time to
 /// whichever thread is free) or in `threads` equal-count contiguous chunks fixed before the start. Thread t
-/// appends to part t of out.pairs.
+/// appends to part t of out.pairs, and hands it over after each task.
 template <class BV>
 void run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, int threads, Distribution dist,
                     TraversalOutput& out, PhaseTrace& trace) {
@@ -69,6 +69,7 @@ void run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, i
   parallel_tasks(tasks.size(), threads, dist, trace, [&](std::size_t i, int tid) {
     Local& l = local[tid].value;
     traverse_bvtt(v, tasks[i], l.stack, out.pairs.part(tid), l.bv_tests);
+    out.hand_over(tid);
   });
   for (const auto& l : local) out.bv_tests += l.value.bv_tests;
 }

@@ -63,6 +63,7 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
         process_front(view, nodes + s.begin, nodes + s.end, params_.prune, piece, out.pairs.part(tid), l.stack,
                       l.counters);
       }
+      out.hand_over(tid);
     });
   });
 

@@ -3,6 +3,7 @@
 // prunes and rebuilds.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <map>
 
 #include "framework/pipeline/ccd_pipeline.hpp"
@@ -28,23 +29,33 @@ PipelineStrategies make(const std::string& scheduler, const std::map<std::string
 }
 
 struct RunResult {
-  std::vector<FacePairs> candidates;  // sorted, per step
+  std::vector<FacePairs> candidates;  // sorted, per step (only when the pipeline kept them)
   std::vector<std::uint64_t> hashes;
+  std::vector<std::array<std::uint64_t, 3>> work;  // candidate pairs, feature pairs, elementary tests, per step
   std::uint64_t bv_tests = 0;
 };
 
-RunResult run(const MeshSequence& scene, PipelineStrategies s) {
+/// hand_over = 0: the pipeline keeps every candidate (compared here); otherwise the narrow phase takes a
+/// thread's candidates whenever it holds that many, while the traversal runs (the default path, made to trigger
+/// on a small scene).
+RunResult run(const MeshSequence& scene, PipelineStrategies s, std::size_t hand_over = 0) {
   CcdPipeline p(scene.topology(), scene.bodies(), std::move(s));
+  p.keep_candidates(hand_over == 0);
+  if (hand_over > 0) p.set_hand_over_pairs(hand_over);
   RunResult r;
   Positions x0 = scene.frame(0);
   for (int i = 0; i < scene.num_steps(); ++i) {
     Positions x1 = scene.frame(i + 1);
     StepResult res = p.step(x0, x1);
-    auto c = p.last_candidates().pairs.flatten();
-    std::sort(c.begin(), c.end());
-    EXPECT_EQ(std::adjacent_find(c.begin(), c.end()), c.end()) << "duplicate candidate at step " << i;
-    r.candidates.push_back(std::move(c));
+    if (hand_over == 0) {
+      auto c = p.last_candidates().pairs.flatten();
+      std::sort(c.begin(), c.end());
+      EXPECT_EQ(std::adjacent_find(c.begin(), c.end()), c.end()) << "duplicate candidate at step " << i;
+      r.candidates.push_back(std::move(c));
+    }
     r.hashes.push_back(contact_set_hash(res.contacts));
+    const StepCounters& k = res.counters;
+    r.work.push_back({k.candidate_pairs, k.vf_pairs + k.ee_pairs, k.vf_tests + k.ee_tests});
     r.bv_tests += res.counters.bv_tests;
     x0 = std::move(x1);
   }
@@ -93,6 +104,10 @@ TEST(Schedulers, IdenticalAnswersForEverySchedulerAndThreadCount) {
       if (variant.name == "front") {
         EXPECT_LT(r.bv_tests, reference.bv_tests) << "the front must save BV tests";
       }
+      // Candidates tested while the traversal runs (handed over after every task): same answers, same work.
+      const RunResult taken = run(scene, make(variant.name, variant.params, threads), 1);
+      EXPECT_EQ(taken.hashes, reference.hashes);
+      EXPECT_EQ(taken.work, r.work);
     }
 }
 
@@ -200,6 +215,7 @@ TEST(AdaptiveRestructuring, RebuildsDegradedSubtreesWithoutChangingAnswers) {
       PipelineStrategies s = make(scheduler, {}, threads);
       s.restructure_threshold = 1.01;  // aggressive: rebuild at the slightest degradation
       CcdPipeline p(scene.topology(), scene.bodies(), std::move(s));
+      p.keep_candidates(true);
       std::uint64_t restructured = 0, version_before = 0;
       Positions x0 = scene.frame(0);
       for (int i = 0; i < scene.num_steps(); ++i) {

@@ -62,6 +62,7 @@ TEST_P(Differential, SelfCollisionMatchesBruteForce) {
   MeshData g = test::grid(9, 7);
   TriMesh mesh(Index(g.positions.size()), g.faces);
   CcdPipeline pipeline(mesh, single_cloth_body(mesh), strategies(GetParam()));
+  pipeline.keep_candidates(true);
   std::size_t total_contacts = 0;
   for (unsigned seed = 1; seed <= 4; ++seed) {
     Frames f = random_step(g.positions, seed, 0.05);
@@ -89,6 +90,7 @@ TEST_P(Differential, ClothAgainstObstacleMatchesBruteForce) {
   std::vector<Body> bodies{{"cloth", BodyKind::cloth, false, 0, nv, 0, nf},
                            {"obstacle", BodyKind::obstacle, false, nv, mesh.num_vertices(), nf, mesh.num_faces()}};
   CcdPipeline pipeline(mesh, bodies, strategies(GetParam()));
+  pipeline.keep_candidates(true);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
   Positions x0 = both.positions, x1 = both.positions;

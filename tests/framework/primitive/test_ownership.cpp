@@ -34,6 +34,7 @@ Gathered gather_one_step(CcdPipeline& pipeline, const MeshData& g, unsigned seed
                          Positions* x1_out = nullptr) {
   const TriMesh& mesh = pipeline.mesh();
   pipeline.set_record_tested_pairs(true);
+  pipeline.keep_candidates(true);
   std::mt19937 rng(seed);
   Positions x0 = test::crumple(g.positions, rng, 0.02), x1 = x0;
   std::uniform_real_distribution<double> u(-1, 1);
