@@ -2,9 +2,12 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
+#include <new>
 #include <fstream>
 #include <string_view>
 
+#include <sys/mman.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -47,6 +50,31 @@ std::uint64_t minor_page_faults() {
   rusage usage{};
   return getrusage(RUSAGE_SELF, &usage) == 0 ? std::uint64_t(usage.ru_minflt) : 0;
 }
+
+namespace {
+constexpr std::size_t kHugePage = std::size_t(2) << 20;
+bool huge_pages_wanted() {
+  static const bool on = [] {
+    const char* v = std::getenv("CCDLAB_HUGE_PAGES");
+    return !(v && (std::string_view(v) == "off" || std::string_view(v) == "0"));
+  }();
+  return on;
+}
+}  // namespace
+
+bool is_large_allocation(std::size_t bytes) { return bytes >= kLargeAllocation && huge_pages_wanted(); }
+
+void* allocate_large(std::size_t bytes) {
+  const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+  void* p = std::aligned_alloc(kHugePage, rounded);
+  if (!p) throw std::bad_alloc();
+#ifdef MADV_HUGEPAGE
+  (void)madvise(p, rounded, MADV_HUGEPAGE);  // advice only: without THP the pages stay 4 KiB
+#endif
+  return p;
+}
+
+void free_large(void* p) { std::free(p); }
 
 void reset_peak_rss() {
   std::ofstream out("/proc/self/clear_refs");

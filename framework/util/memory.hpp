@@ -2,6 +2,7 @@
 // Memory of the running process, for the memory limit of a run (config `memory_limit`) and the peak resident
 // memory reported per step. Linux: /proc/self/status (VmRSS, VmHWM) and /proc/self/clear_refs (writing 5
 // resets the high-water mark, so each step's peak is its own); elsewhere the functions return 0 ("unknown").
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -18,6 +19,20 @@ void reset_peak_rss();
 /// Minor page faults of this process so far (getrusage), all threads: each is a first touch of a new page. On
 /// some VMs one costs microseconds (docs/narrow-phase.md, "Memory touched once"), so a step reports its own.
 std::uint64_t minor_page_faults();
+
+/// Large arrays (node volumes, feature bounds, candidate lists: GrowthAllocator) in transparent huge pages. A
+/// fresh 4 KiB page costs a fault on first touch, ~5–13 µs on some VMs (docs/narrow-phase.md, "Huge pages for
+/// large arrays"): the n-body step's 30 MB of node volumes were 7.4K faults, 60% of its swept-volume pass at 2
+/// threads. One 2 MiB page takes one fault. Allocations of kLargeAllocation bytes or more are 2 MiB-aligned and
+/// marked MADV_HUGEPAGE (Linux; the kernel's THP setting decides, "never" turns it off); CCDLAB_HUGE_PAGES=off in
+/// the environment turns it off for the process (read once).
+constexpr std::size_t kLargeAllocation = std::size_t(4) << 20;
+/// True when an allocation of `bytes` goes through allocate_large (the same answer for the whole process).
+bool is_large_allocation(std::size_t bytes);
+/// 2 MiB-aligned memory for `bytes` (rounded up to whole huge pages), marked for huge pages; throws
+/// std::bad_alloc. Free it with free_large.
+void* allocate_large(std::size_t bytes);
+void free_large(void* p);
 
 /// "8GiB", "512MiB", "1.5G", "2000000000" (bytes) or "60%" (of available_memory_bytes()); "0" or "none" = no
 /// limit (returns 0). Throws Error naming `what` on anything else.

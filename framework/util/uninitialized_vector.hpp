@@ -1,11 +1,13 @@
 #pragma once
 // Vectors whose resize() does not value-initialize the new elements: for buffers that a kernel fills right
 // after growing them (the narrow phase's batches, candidate lists, bounding volumes), where zero-filling or
-// constructing first costs a pass over memory, on one thread.
+// constructing first costs a pass over memory, on one thread. Large ones live in huge pages (memory.hpp).
 #include <memory>
 #include <type_traits>
 #include <utility>
 #include <vector>
+
+#include "framework/util/memory.hpp"
 
 namespace ccdlab {
 
@@ -30,6 +32,15 @@ struct GrowthAllocator : std::allocator<T> {
   template <class U>
   void construct(U* p) noexcept(G == Growth::unconstructed || std::is_nothrow_default_constructible_v<U>) {
     if constexpr (G == Growth::default_init) ::new (static_cast<void*>(p)) U;
+  }
+  /// Large arrays in huge pages (framework/util/memory.hpp).
+  T* allocate(std::size_t n) {
+    if (!is_large_allocation(n * sizeof(T))) return std::allocator<T>::allocate(n);
+    return static_cast<T*>(allocate_large(n * sizeof(T)));
+  }
+  void deallocate(T* p, std::size_t n) {
+    if (!is_large_allocation(n * sizeof(T))) return std::allocator<T>::deallocate(p, n);
+    free_large(p);
   }
   template <class U, class... Args>
   void construct(U* p, Args&&... args) {
