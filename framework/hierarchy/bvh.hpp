@@ -49,8 +49,8 @@ struct RefitPlan {
 };
 
 struct BvhTopology {
-  std::vector<BvhNode> nodes;  ///< pre-order, nodes[0] = root; 2·leaves − 1 nodes
-  std::vector<Index> leaf_count;  ///< number of leaves under each node
+  UninitializedVector<BvhNode> nodes;  ///< pre-order, nodes[0] = root; 2·leaves − 1 nodes (large: huge pages)
+  UninitializedVector<Index> leaf_count;  ///< number of leaves under each node
   /// Changes with every change of `nodes` (a build, replace_subtree): write nodes only through those two.
   std::uint64_t version = next_topology_version();
 

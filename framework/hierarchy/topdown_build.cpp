@@ -25,7 +25,7 @@ BvhTopology build_top_down(std::span<const Index> faces, std::span<const Box3> f
   BvhTopology bvh;
   if (faces.empty()) return bvh;
   const auto t_start = std::chrono::steady_clock::now();
-  std::vector<BuildItem> items(faces.size());
+  UninitializedVector<BuildItem> items(faces.size());  // large: in huge pages (memory.hpp)
   for (std::size_t i = 0; i < faces.size(); ++i) items[i] = {face_boxes[i].center(), faces[i], Index(i)};
   bvh.nodes.assign(2 * faces.size() - 1, BvhNode{});
 

@@ -142,13 +142,16 @@ CcdPipeline::~CcdPipeline() = default;
 
 void CcdPipeline::build_hierarchies(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace) {
   for (BodyState& body : bodies_) {
-    std::vector<Box3> boxes(body.faces.size());
+    UninitializedVector<Box3> boxes(body.faces.size());  // large: in huge pages (memory.hpp)
     parallel_chunks(body.faces.size(), kFaceChunk, strategies_.threads, trace, [&](std::size_t b, std::size_t e, int) {
-      for (std::size_t i = b; i < e; ++i)
+      for (std::size_t i = b; i < e; ++i) {
+        Box3 box;
         for (Index v : mesh_.face(body.faces[i])) {
-          boxes[i].grow(x_t0[v]);
-          boxes[i].grow(x_t1[v]);
+          box.grow(x_t0[v]);
+          box.grow(x_t1[v]);
         }
+        boxes[i] = box;
+      }
     });
     body.bvh = strategies_.builder->build(body.faces, boxes, {strategies_.threads, &trace});
     if (body.bvh.nodes.empty()) continue;

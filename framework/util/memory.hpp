@@ -20,13 +20,16 @@ void reset_peak_rss();
 /// some VMs one costs microseconds (docs/narrow-phase.md, "Memory touched once"), so a step reports its own.
 std::uint64_t minor_page_faults();
 
-/// Large arrays (node volumes, feature bounds, candidate lists: GrowthAllocator) in transparent huge pages. A
+/// Large arrays (node volumes, BVH nodes, build items and boxes, feature bounds, candidate lists: every
+/// UninitializedVector and UnconstructedVector, through GrowthAllocator) in transparent huge pages. A
 /// fresh 4 KiB page costs a fault on first touch, ~5–13 µs on some VMs (docs/narrow-phase.md, "Huge pages for
 /// large arrays"): the n-body step's 30 MB of node volumes were 7.4K faults, 60% of its swept-volume pass at 2
-/// threads. One 2 MiB page takes one fault. Allocations of kLargeAllocation bytes or more are 2 MiB-aligned and
+/// threads; the BVH build's boxes, items and nodes were most of its time (rod-twist 2 threads: build 40 → 21 ms
+/// with them in huge pages). One 2 MiB page takes one fault. Allocations of kLargeAllocation bytes or more (1 MiB:
+/// zeroing one 2 MiB page costs less than 256 faults here, about the same on bare metal) are 2 MiB-aligned and
 /// marked MADV_HUGEPAGE (Linux; the kernel's THP setting decides, "never" turns it off); CCDLAB_HUGE_PAGES=off in
 /// the environment turns it off for the process (read once).
-constexpr std::size_t kLargeAllocation = std::size_t(4) << 20;
+constexpr std::size_t kLargeAllocation = std::size_t(1) << 20;
 /// True when an allocation of `bytes` goes through allocate_large (the same answer for the whole process).
 bool is_large_allocation(std::size_t bytes);
 /// 2 MiB-aligned memory for `bytes` (rounded up to whole huge pages), marked for huge pages; throws
