@@ -7,7 +7,7 @@
 
 namespace ccdlab {
 
-std::vector<int> contacts_per_face(const TriMesh& mesh, const std::vector<Contact>& contacts) {
+std::vector<int> contacts_per_face(const TriMesh& mesh, const Contacts& contacts) {
   std::vector<int> count(std::size_t(mesh.num_faces()), 0);
   std::vector<Index> touched;
   for (const Contact& c : contacts) {
@@ -140,7 +140,7 @@ VtkGrid front_grid(const BvhTopology& bvh_a, const AnyBvs& bvs_a, const BvhTopol
   return g;
 }
 
-VtkGrid contacts_grid(const std::vector<Contact>& contacts, const Positions& x_t0, const Positions& x_t1) {
+VtkGrid contacts_grid(const Contacts& contacts, const Positions& x_t0, const Positions& x_t1) {
   VtkGrid g;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];

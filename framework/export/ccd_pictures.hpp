@@ -23,7 +23,7 @@
 namespace ccdlab {
 
 /// Contacts touching each face (see above).
-std::vector<int> contacts_per_face(const TriMesh& mesh, const std::vector<Contact>& contacts);
+std::vector<int> contacts_per_face(const TriMesh& mesh, const Contacts& contacts);
 
 VtkGrid mesh_grid(const TriMesh& mesh, const std::vector<Body>& bodies, const Positions& x, const Positions& x_next,
                   const std::vector<int>& face_contacts);
@@ -47,6 +47,6 @@ VtkGrid front_grid(const BvhTopology& bvh_a, const AnyBvs& bvs_a, const BvhTopol
                    const std::vector<FrontNode>& nodes, const std::vector<FrontChange>& change);
 
 /// Cell arrays: contact (index), kind (0 VF, 1 EE), toi, role (0 contact point, 1 feature).
-VtkGrid contacts_grid(const std::vector<Contact>& contacts, const Positions& x_t0, const Positions& x_t1);
+VtkGrid contacts_grid(const Contacts& contacts, const Positions& x_t0, const Positions& x_t1);
 
 }  // namespace ccdlab

@@ -74,7 +74,7 @@ EdgeEdgeQuery NarrowPhase::ee_query(Index a, Index b) const {
   return {x0[ea[0]], x0[ea[1]], x0[eb[0]], x0[eb[1]], x1[ea[0]], x1[ea[1]], x1[eb[0]], x1[eb[1]]};
 }
 
-void NarrowPhase::run(NarrowScratch& scratch, std::vector<Contact>& out, NarrowCounters& c, bool cull) const {
+void NarrowPhase::run(NarrowScratch& scratch, Contacts& out, NarrowCounters& c, bool cull) const {
   FeatureBatch& batch = scratch.batch;
   c.vf_pairs += batch.vf.size();
   c.ee_pairs += batch.ee.size();
@@ -162,21 +162,21 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   c.split_ns += ns_since(t_split);
 }
 
-void NarrowPhase::test(const FeatureBatch& batch, std::vector<Contact>& out, NarrowCounters& c) const {
+void NarrowPhase::test(const FeatureBatch& batch, Contacts& out, NarrowCounters& c) const {
   const auto t = Clock::now();
   for (const VertexFacePair& p : batch.vf) test_vf(p.v, p.f, out, c);
   for (const EdgeEdgePair& p : batch.ee) test_ee(p.a, p.b, out, c);
   c.test_ns += ns_since(t);
 }
 
-void NarrowPhase::test_vf(Index v, Index f, std::vector<Contact>& out, NarrowCounters& c) const {
+void NarrowPhase::test_vf(Index v, Index f, Contacts& out, NarrowCounters& c) const {
   const CcdHit hit = tester_.vertex_face(vf_query(v, f));
   if (!counted(hit, c.vf_tests, c.contacts_vf, c)) return;
   const Face& t = mesh_.face(f);
   out.push_back(Contact{ContactKind::vf, v, f, {v, t[0], t[1], t[2]}, hit.toi, hit.coords});
 }
 
-void NarrowPhase::test_ee(Index a, Index b, std::vector<Contact>& out, NarrowCounters& c) const {
+void NarrowPhase::test_ee(Index a, Index b, Contacts& out, NarrowCounters& c) const {
   const CcdHit hit = tester_.edge_edge(ee_query(a, b));
   if (!counted(hit, c.ee_tests, c.contacts_ee, c)) return;
   const Edge &ea = mesh_.edge(a), &eb = mesh_.edge(b);

@@ -50,7 +50,7 @@ class NarrowPhase {
   void gather(std::span<const FacePair> candidates, FeatureBatch& batch) const;
   /// Culls and tests the pairs of `batch` (consumed: it holds the survivors afterwards); appends contacts.
   /// `cull = false` skips the culling stages (brute-force references).
-  void run(NarrowScratch& scratch, std::vector<Contact>& out, NarrowCounters& c, bool cull = true) const;
+  void run(NarrowScratch& scratch, Contacts& out, NarrowCounters& c, bool cull = true) const;
 
   [[nodiscard]] VertexFaceQuery vf_query(Index v, Index f) const;
   [[nodiscard]] EdgeEdgeQuery ee_query(Index a, Index b) const;
@@ -59,9 +59,9 @@ class NarrowPhase {
  private:
   void cull_kdop(NarrowScratch& scratch, NarrowCounters& c) const;
   void cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCounters& c) const;
-  void test(const FeatureBatch& batch, std::vector<Contact>& out, NarrowCounters& c) const;
-  void test_vf(Index v, Index f, std::vector<Contact>& out, NarrowCounters& c) const;
-  void test_ee(Index a, Index b, std::vector<Contact>& out, NarrowCounters& c) const;
+  void test(const FeatureBatch& batch, Contacts& out, NarrowCounters& c) const;
+  void test_vf(Index v, Index f, Contacts& out, NarrowCounters& c) const;
+  void test_ee(Index a, Index b, Contacts& out, NarrowCounters& c) const;
 
   const TriMesh& mesh_;
   const PrimitiveTester& tester_;

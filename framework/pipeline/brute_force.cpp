@@ -17,7 +17,7 @@ FacePairs brute_force_candidates(const TriMesh& mesh, const CollisionRules& rule
   return out;
 }
 
-std::vector<Contact> brute_force_contacts(const TriMesh& mesh, const CollisionRules& rules, const Positions& x_t0,
+Contacts brute_force_contacts(const TriMesh& mesh, const CollisionRules& rules, const Positions& x_t0,
                                           const Positions& x_t1, const PrimitiveTester& tester, bool box_cull) {
   // Every pair, one at a time: the scalar narrow phase on a batch that holds them all.
   NarrowPhase narrow(mesh, tester, {NarrowMode::scalar, RepresentativeRule::fixed}, [](Index) { return false; });
@@ -36,7 +36,7 @@ std::vector<Contact> brute_force_contacts(const TriMesh& mesh, const CollisionRu
       if (!shares_vertex(mesh.edge(a), mesh.edge(b)) &&
           rules.bodies_interact(rules.body_of_vertex(mesh.edge(a)[0]), rules.body_of_vertex(mesh.edge(b)[0])))
         scratch.batch.ee.push_back({a, b});
-  std::vector<Contact> contacts;
+  Contacts contacts;
   NarrowCounters counters;
   narrow.run(scratch, contacts, counters, box_cull);
   sort_contacts(contacts);

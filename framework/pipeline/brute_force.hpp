@@ -18,7 +18,7 @@ FacePairs brute_force_candidates(const TriMesh& mesh, const CollisionRules& rule
 /// 26-DOPs are not within η are skipped as the pipeline skips them (framework/narrow/feature_bounds.hpp): the
 /// reference for testers that may report a near miss as a hit (`float` within its tolerance), where the
 /// question is only whether the BVH, the representative rule and the culling lost a pair.
-std::vector<Contact> brute_force_contacts(const TriMesh& mesh, const CollisionRules& rules, const Positions& x_t0,
+Contacts brute_force_contacts(const TriMesh& mesh, const CollisionRules& rules, const Positions& x_t0,
                                           const Positions& x_t1, const PrimitiveTester& tester, bool box_cull = false);
 
 }  // namespace ccdlab

@@ -299,7 +299,7 @@ void CcdPipeline::refit_wide(BodyState& body, PhaseTrace& trace) {
 
 /// One thread's narrow-phase state over a parallel loop: what it found and counted, and its batch memory.
 struct CcdPipeline::NarrowLocal {
-  std::vector<Contact> contacts;
+  Contacts contacts;
   NarrowCounters counters;
   NarrowScratch scratch;
   std::vector<VertexFacePair> tested_vf;
@@ -324,6 +324,9 @@ void CcdPipeline::merge_narrow(const std::vector<PerThread<NarrowLocal>>& local,
                                PhaseTrace& trace) {
   // In thread order; the final sort makes the result independent of the schedule.
   const auto t0 = Clock::now();
+  std::size_t found = 0;
+  for (const auto& per_thread : local) found += per_thread.value.contacts.size();
+  result.contacts.reserve(result.contacts.size() + found);
   for (const auto& per_thread : local) {
     const NarrowLocal& l = per_thread.value;
     result.contacts.insert(result.contacts.end(), l.contacts.begin(), l.contacts.end());

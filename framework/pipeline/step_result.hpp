@@ -39,7 +39,7 @@ struct StepMemory {
 };
 
 struct StepResult {
-  std::vector<Contact> contacts;  ///< sorted by feature identity
+  Contacts contacts;  ///< sorted by feature identity
   StepCounters counters;
   StepTimings timings;
   TraversalStats traversal;        ///< the scheduler's counters (front size, serial time, …)

@@ -6,7 +6,7 @@
 
 namespace ccdlab {
 
-void sort_contacts(std::vector<Contact>& contacts) {
+void sort_contacts(Contacts& contacts) {
   std::sort(contacts.begin(), contacts.end(), [](const Contact& x, const Contact& y) { return x.key() < y.key(); });
 }
 

@@ -18,7 +18,7 @@ void ImpactZones::reset(std::size_t vertices) {
 }
 
 ImpactZones::Outcome ImpactZones::resolve(CcdPipeline& crossing, const SimSetup& setup, SimState& s, double dt,
-                                           int max_rounds, const std::vector<Contact>* found) {
+                                           int max_rounds, const Contacts* found) {
   reset(s.p.size());
   inelastic_ = false;
   Outcome out;
@@ -55,7 +55,7 @@ ImpactZones::Outcome ImpactZones::resolve(CcdPipeline& crossing, const SimSetup&
   return out;
 }
 
-std::size_t ImpactZones::merge_bodies(const SimSetup& setup, const std::vector<Contact>& contacts) {
+std::size_t ImpactZones::merge_bodies(const SimSetup& setup, const Contacts& contacts) {
   if (contacts.empty()) return 0;
   const Index root = find(contacts.front().vertices[0]);
   std::size_t joined = 0;
@@ -86,7 +86,7 @@ Index ImpactZones::find(Index v) {
   return v;
 }
 
-std::size_t ImpactZones::merge(const std::vector<Contact>& contacts, bool into_one) {
+std::size_t ImpactZones::merge(const Contacts& contacts, bool into_one) {
   std::size_t joined = 0;
   for (const Contact& c : contacts) {
     bool new_zone = false;

@@ -42,17 +42,17 @@ class ImpactZones {
   /// no contact is left, none can be merged, or `max_rounds` rounds ran. `found`: the contacts of the current
   /// motion when the caller has just detected them (the first detection is then skipped).
   Outcome resolve(CcdPipeline& crossing, const SimSetup& setup, SimState& s, double dt, int max_rounds,
-                  const std::vector<Contact>* found = nullptr);
+                  const Contacts* found = nullptr);
 
   /// Forgets every zone (each sub-step starts with single vertices).
   void reset(std::size_t vertices);
   /// Merges the vertices of each contact into one zone (`into_one`: the vertices of all contacts into a single
   /// zone). Returns how many contacts joined different zones: 0 means every contact lies inside one rigidly
   /// moving zone already, and another round cannot help.
-  std::size_t merge(const std::vector<Contact>& contacts, bool into_one = false);
+  std::size_t merge(const Contacts& contacts, bool into_one = false);
   /// Merges every vertex of each cloth body that a contact touches into the first contact's zone (the last
   /// escalation). Returns how many vertices joined.
-  std::size_t merge_bodies(const SimSetup& setup, const std::vector<Contact>& contacts);
+  std::size_t merge_bodies(const SimSetup& setup, const Contacts& contacts);
   /// Moves every zone of two or more vertices rigidly over the sub-step (p and v of its free vertices).
   void move(const SimSetup& setup, SimState& s, double dt);
 

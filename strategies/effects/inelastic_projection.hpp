@@ -46,7 +46,7 @@ ContactRow contact_row(const Contact& c, const SimSetup& setup, const SimState& 
 class InelasticProjection {
  public:
   struct Outcome {
-    std::vector<Contact> left;  ///< contacts still found after the last round (for the impact zones)
+    Contacts left;  ///< contacts still found after the last round (for the impact zones)
     int detections = 0;         ///< CCD steps run
   };
   /// Detects x → p with `crossing` (zero thickness), adds a row per contact found, projects, updates p, until no

@@ -128,7 +128,7 @@ MeshSequence small_drape_fold() {
 }
 
 using Keys = std::vector<std::tuple<ContactKind, Index, Index>>;
-Keys keys(const std::vector<Contact>& cs) {
+Keys keys(const Contacts& cs) {
   Keys k;
   for (const Contact& c : cs) k.push_back(c.key());
   std::sort(k.begin(), k.end());

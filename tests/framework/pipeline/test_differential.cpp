@@ -50,7 +50,7 @@ AnyBvs swept_face_bvs(const CcdPipeline& pipeline, const Positions& x0, const Po
   return bvs;
 }
 
-std::vector<std::tuple<ContactKind, Index, Index>> keys(const std::vector<Contact>& cs) {
+std::vector<std::tuple<ContactKind, Index, Index>> keys(const Contacts& cs) {
   std::vector<std::tuple<ContactKind, Index, Index>> k;
   for (const Contact& c : cs) k.push_back(c.key());
   return k;

@@ -26,7 +26,7 @@ PipelineStrategies with_cones(const std::string& scheduler, int threads, bool co
   return s;
 }
 
-std::vector<std::tuple<ContactKind, Index, Index>> keys(const std::vector<Contact>& cs) {
+std::vector<std::tuple<ContactKind, Index, Index>> keys(const Contacts& cs) {
   std::vector<std::tuple<ContactKind, Index, Index>> k;
   for (const Contact& c : cs) k.push_back(c.key());
   return k;
