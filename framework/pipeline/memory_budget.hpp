@@ -5,7 +5,9 @@
 // memory risk. When the predicted transient memory does not fit under the limit, the step streams: each
 // traversal pass is cut into BVTT slices, and the candidates are tested (and freed) whenever their buffer
 // reaches the budget, so the transient part stays bounded whatever the scene does. Same contacts either way:
-// the slices partition the BVTT, and contacts are sorted at the end of the step.
+// the slices partition the BVTT, and contacts are sorted at the end of the step. The prediction counts every
+// candidate as buffered, which only `sequential` does: the task schedulers hand their candidates to the narrow
+// phase as they go (TraversalOutput::hand_over), so for them it is an upper bound.
 #include <cstddef>
 #include <cstdint>
 
