@@ -505,6 +505,10 @@ void CcdPipeline::traverse_and_test(const MemoryPlan& plan, StepResult& result) 
       double ms = 0;
     };
     std::vector<PerThread<Taken>> taken(threads);
+    struct Unset {  // the consumer refers to this frame: never left set, even when a scheduler throws
+      TraversalOutput& out;
+      ~Unset() { out.consumer = nullptr; }
+    } unset{candidates_};
     if (!keep_candidates_)
       candidates_.consumer = [&](int tid, std::span<const FacePair> pairs) {
         const auto tc = Clock::now();
@@ -522,11 +526,12 @@ void CcdPipeline::traverse_and_test(const MemoryPlan& plan, StepResult& result) 
       result.counters.candidate_pairs += tk.value.pairs;
       narrow_ms += tk.value.ms / threads;
     }
+    traverse_ms = ms_since(t) - narrow_ms;
+    const auto t_merge = Clock::now();
     PhaseTrace trace{"narrow_in_traversal", Distribution::dynamic, 0, {}, {}};  // its tasks are the traversal's
     merge_narrow(local, result, trace);
     result.traces.push_back(std::move(trace));
-    traverse_ms = ms_since(t) - narrow_ms;
-    result.timings.narrow_ms += narrow_ms;
+    result.timings.narrow_ms += narrow_ms + ms_since(t_merge);
     test_candidates(result);  // what is left in the parts
   } else {
     // Each pass cut into slices (the BVTT nodes of one breadth-first level, BV tests counted, leaf pairs met
