@@ -103,7 +103,7 @@ struct TraversalOutput {
   /// phase, on the thread that found the pairs) and is emptied. The pairs are tested while still in cache,
   /// and the list reuses a few hundred KiB instead of holding a whole step: n-body's 4.3M candidates were 8.4K
   /// fresh pages, half of its 2-thread traversal on a VM where a page fault costs ~7 µs (docs/narrow-phase.md,
-  /// "Candidates tested as they are found"). What is left in the parts after collect() is the caller's.
+  /// "Page faults, again"). What is left in the parts after collect() is the caller's.
   CandidateConsumer consumer;
   static constexpr std::size_t kHandOverPairs = std::size_t(1) << 14;  // 128 KiB: stays in L2
   std::size_t hand_over_pairs = kHandOverPairs;  ///< tests lower it, so that small scenes take this path
