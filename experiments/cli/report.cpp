@@ -30,6 +30,8 @@ nlohmann::json step_json(const StepResult& r) {
             {"plane_culled", c.plane_culled},
             {"split_culled", c.split_culled},
             {"split_ms", double(c.split_ns) * 1e-6},
+            {"proximity_culled", c.proximity_culled},
+            {"proximity_ms", double(c.proximity_ns) * 1e-6},
             {"gather_ms", double(c.gather_ns) * 1e-6},
             {"kdop_ms", double(c.kdop_ns) * 1e-6},
             {"plane_ms", double(c.plane_ns) * 1e-6},

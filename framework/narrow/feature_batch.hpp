@@ -24,6 +24,7 @@ struct NarrowScratch {
   FeatureBatch batch;
   PlaneBatch plane;
   std::vector<std::uint8_t> keep;
+  std::vector<std::uint16_t> open;  ///< stage 3's open windows per row, for stage 4
 };
 
 }  // namespace ccdlab

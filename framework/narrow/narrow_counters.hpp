@@ -14,6 +14,7 @@ struct NarrowCounters {
   std::uint64_t kdop_culled = 0;     ///< pairs whose swept feature 26-DOPs are disjoint (stage 1, every mode)
   std::uint64_t plane_culled = 0;    ///< pairs proven to stay off each other's plane/line (stage 2, batched only)
   std::uint64_t split_culled = 0;    ///< pairs proven apart on every half or sixteenth of the step (stage 3, batched only)
+  std::uint64_t proximity_culled = 0;  ///< pairs proven apart on the sixteenths stage 3 left open (stage 4, batched only)
   std::uint64_t vf_tests = 0;        ///< elementary VF tests run (survivors of the culling stages)
   std::uint64_t ee_tests = 0;        ///< elementary EE tests run
   std::uint64_t orphan_tests = 0;    ///< of the VF + EE tests, those from the orphan set
@@ -27,12 +28,14 @@ struct NarrowCounters {
   std::uint64_t kdop_ns = 0;    ///< stage 1
   std::uint64_t plane_ns = 0;   ///< stage 2 (staging the coordinates included)
   std::uint64_t split_ns = 0;   ///< stage 3
+  std::uint64_t proximity_ns = 0;  ///< stage 4
   std::uint64_t test_ns = 0;    ///< elementary tests and contact records
 
   NarrowCounters& operator+=(const NarrowCounters& o) {
     vf_pairs += o.vf_pairs, ee_pairs += o.ee_pairs, orphan_vf += o.orphan_vf, orphan_ee += o.orphan_ee;
     orphans_culled += o.orphans_culled, kdop_culled += o.kdop_culled, plane_culled += o.plane_culled;
     split_culled += o.split_culled, split_ns += o.split_ns;
+    proximity_culled += o.proximity_culled, proximity_ns += o.proximity_ns;
     vf_tests += o.vf_tests, ee_tests += o.ee_tests, orphan_tests += o.orphan_tests;
     tests_filtered += o.tests_filtered, tests_fallback += o.tests_fallback;
     contacts_vf += o.contacts_vf, contacts_ee += o.contacts_ee;

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "framework/narrow/proximity_filter.hpp"
 #include "framework/narrow/split_filter.hpp"
 
 #include "framework/util/error.hpp"
@@ -101,7 +102,7 @@ void NarrowPhase::run(NarrowScratch& scratch, Contacts& out, NarrowCounters& c, 
   if (cull) {
     cull_kdop(scratch, c);
     if (const auto reach = tester_.cull_reach()) {
-      cull_plane(scratch, *reach, c);  // stages 2 and 3
+      cull_plane(scratch, *reach, c);  // stages 2, 3 and 4
     }
   }
   test(batch, out, c);
@@ -149,17 +150,29 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   const auto t_split = Clock::now();
   c.plane_ns += ns_since(t);
   // Stage 3 on stage 2's survivors, from the coefficients, threshold and reach stage 2 left in the rows: halves,
-  // then sixteenths on what the halves keep (split_filter.hpp).
-  for (const int levels : {kSplitCoarseLevels, kSplitLevels}) {
-    const std::size_t rows = batch.vf.size() + batch.ee.size();
-    scratch.keep.assign(rows, 1);
-    split_filter(plane, 0, batch.vf.size(), true, scratch.keep.data(), levels);
-    split_filter(plane, batch.vf.size(), rows, false, scratch.keep.data(), levels);
-    if (levels != kSplitLevels) plane.compact(scratch.keep.data());  // the rows the next pass reads
-    compact(batch, scratch.keep);
-  }
-  c.split_culled += plane_kept - batch.vf.size() - batch.ee.size();
+  // then sixteenths on what the halves keep (split_filter.hpp), which also leave each row's open windows.
+  std::size_t kept_vf = batch.vf.size(), rows = kept_vf + batch.ee.size();
+  scratch.keep.assign(rows, 1);
+  split_filter(plane, 0, kept_vf, true, scratch.keep.data(), kSplitCoarseLevels);
+  split_filter(plane, kept_vf, rows, false, scratch.keep.data(), kSplitCoarseLevels);
+  plane.compact(scratch.keep.data());  // the rows the next pass reads
+  compact(batch, scratch.keep);
+  kept_vf = batch.vf.size(), rows = kept_vf + batch.ee.size();
+  scratch.keep.assign(rows, 1);
+  scratch.open.resize(rows);
+  split_filter(plane, 0, kept_vf, true, scratch.keep.data(), kSplitLevels, scratch.open.data());
+  split_filter(plane, kept_vf, rows, false, scratch.keep.data(), kSplitLevels, scratch.open.data());
+  std::size_t split_kept = 0;
+  for (std::size_t i = 0; i < rows; ++i) split_kept += scratch.keep[i];
+  c.split_culled += plane_kept - split_kept;
+  const auto t_proximity = Clock::now();
   c.split_ns += ns_since(t_split);
+  // Stage 4 on the rows stage 3 kept, in place (same row numbers): the distance on their open windows.
+  for (std::size_t i = 0; i < rows; ++i)
+    if (scratch.keep[i]) scratch.keep[i] = proximity_filter_keeps(plane, i, i < kept_vf, scratch.open[i], kSplitLevels);
+  compact(batch, scratch.keep);
+  c.proximity_culled += split_kept - batch.vf.size() - batch.ee.size();
+  c.proximity_ns += ns_since(t_proximity);
 }
 
 void NarrowPhase::test(const FeatureBatch& batch, Contacts& out, NarrowCounters& c) const {

@@ -6,6 +6,7 @@
 //   stage 1  swept feature 26-DOPs overlap (feature_bounds.hpp, SIMD)     every mode; defines the contact set
 //   stage 2  certified plane test, SIMD over the batch (plane_filter.hpp)   batched mode, testers with a reach
 //   stage 3  the plane test and the boxes on parts of the step (split_filter.hpp)               〃
+//   stage 4  the features' distance on the sixteenths stage 3 left open (proximity_filter.hpp)  〃
 //   test     the PrimitiveTester on the survivors; hits become contacts
 //
 // `scalar` mode runs stage 1 and the test pair by pair, as a student would write it; `batched` runs each

@@ -26,7 +26,7 @@ using namespace split_detail;
 
 template <bool kVf, int kLevels>
 void SplitRange(const double* const* col, const double* const* res, std::size_t begin, std::size_t end,
-                std::uint8_t* keep) {
+                std::uint8_t* keep, std::uint16_t* open) {
   constexpr int kWindows = 1 << kLevels;
   const hn::ScalableTag<double> d;
   using V = hn::Vec<decltype(d)>;
@@ -68,6 +68,7 @@ void SplitRange(const double* const* col, const double* const* res, std::size_t 
         c[2 * w + 1][0] = mid, c[2 * w + 1][1] = b123, c[2 * w + 1][2] = b23, c[2 * w + 1][3] = b3;
       }
     auto all_apart = hn::Eq(zero, zero);  // all true
+    V open_bits = zero;                   // bit w (as an exact integer in a double): window w not proven
     V prev[9];
     for (int k = 0; k < 9; ++k) prev[k] = p[k];
     for (int w = 0; w < kWindows; ++w) {
@@ -92,23 +93,29 @@ void SplitRange(const double* const* col, const double* const* res, std::size_t 
         sign = hn::Or(sign, hn::Or(hn::Gt(hn::Sub(lo1, pad), hi2), hn::Gt(hn::Sub(lo2, pad), hi1)));
       }
       all_apart = hn::And(all_apart, sign);
+      open_bits = hn::Add(open_bits, hn::IfThenZeroElse(sign, hn::Set(d, double(1u << w))));
       for (int k = 0; k < 9; ++k) prev[k] = next[k];
     }
     std::uint8_t bits[8] = {};
     hn::StoreMaskBits(d, all_apart, bits);
     for (std::size_t j = 0; j < N && i + j < end; ++j)
       if ((bits[j / 8] >> (j % 8)) & 1) keep[i + j] = 0;
+    if (open) {
+      double o[HWY_MAX_BYTES / sizeof(double)];
+      hn::StoreU(open_bits, d, o);
+      for (std::size_t j = 0; j < N && i + j < end; ++j) open[i + j] = std::uint16_t(o[j]);
+    }
   }
 }
 
 void SplitFilter(const double* const* col, const double* const* res, std::size_t begin, std::size_t end, bool vf,
-                 int levels, std::uint8_t* keep) {
+                 int levels, std::uint8_t* keep, std::uint16_t* open) {
   if (levels == kSplitCoarseLevels) {
-    if (vf) SplitRange<true, kSplitCoarseLevels>(col, res, begin, end, keep);
-    else SplitRange<false, kSplitCoarseLevels>(col, res, begin, end, keep);
+    if (vf) SplitRange<true, kSplitCoarseLevels>(col, res, begin, end, keep, open);
+    else SplitRange<false, kSplitCoarseLevels>(col, res, begin, end, keep, open);
   } else {
-    if (vf) SplitRange<true, kSplitLevels>(col, res, begin, end, keep);
-    else SplitRange<false, kSplitLevels>(col, res, begin, end, keep);
+    if (vf) SplitRange<true, kSplitLevels>(col, res, begin, end, keep, open);
+    else SplitRange<false, kSplitLevels>(col, res, begin, end, keep, open);
   }
 }
 
@@ -127,16 +134,20 @@ namespace ccdlab {
 HWY_EXPORT(SplitFilter);
 
 void split_filter(const PlaneBatch& plane, std::size_t begin, std::size_t end, bool vf, std::uint8_t* keep,
-                  int levels) {
+                  int levels, std::uint16_t* open) {
   if (levels != kSplitCoarseLevels && levels != kSplitLevels) fail("split_filter: {} levels not compiled", levels);
   const double* cols[PlaneBatch::kColumns];
   for (int c = 0; c < PlaneBatch::kColumns; ++c) cols[c] = plane.column(c);
   const double* res[PlaneBatch::kResults];
   for (int r = 0; r < PlaneBatch::kResults; ++r) res[r] = plane.result_column(r);
-  HWY_DYNAMIC_DISPATCH(SplitFilter)(cols, res, begin, end, vf, levels, keep);
+  HWY_DYNAMIC_DISPATCH(SplitFilter)(cols, res, begin, end, vf, levels, keep, open);
 }
 
 bool split_filter_keeps(const PlaneBatch& plane, std::size_t i, bool vf, int levels) {
+  return split_filter_open(plane, i, vf, levels) != 0;
+}
+
+std::uint16_t split_filter_open(const PlaneBatch& plane, std::size_t i, bool vf, int levels) {
   using namespace split_detail;
   const int windows = 1 << levels;
   auto col = [&](int c) { return plane.column(c)[i]; };
@@ -165,6 +176,7 @@ bool split_filter_keeps(const PlaneBatch& plane, std::size_t i, bool vf, int lev
     }
   double prev[9];
   std::copy(p, p + 9, prev);
+  std::uint16_t open = 0;
   for (int w = 0; w < windows; ++w) {
     const double s = double(w + 1) / windows;
     double next[9];
@@ -185,10 +197,10 @@ bool split_filter_keeps(const PlaneBatch& plane, std::size_t i, bool vf, int lev
       }
       apart = apart || (lo1 - pad > hi2) || (lo2 - pad > hi1);
     }
-    if (!apart) return true;
+    open |= std::uint16_t(!apart) << w;
     std::copy(next, next + 9, prev);
   }
-  return false;
+  return open;
 }
 
 }  // namespace ccdlab

@@ -27,11 +27,14 @@ constexpr int kSplitLevels = 4;
 constexpr int kSplitCoarseLevels = 1;
 
 /// Rows [begin, end) of `plane`, all VF (`vf`) or all EE, filled by plane_filter: keep[i] = 0 for rows proven
-/// apart on every one of the 2^levels windows, untouched otherwise. Runs on the best SIMD target of this CPU.
+/// apart on every one of the 2^levels windows, untouched otherwise; with `open`, open[i] = the windows not
+/// proven (bit w: window w), what stage 4 (proximity_filter.hpp) looks at. Runs on the best SIMD target of this CPU.
 void split_filter(const PlaneBatch& plane, std::size_t begin, std::size_t end, bool vf, std::uint8_t* keep,
-                  int levels = kSplitLevels);
+                  int levels = kSplitLevels, std::uint16_t* open = nullptr);
 
-/// The same test for one row, plain C++: the reference the SIMD targets are checked against.
+/// The same test for one row, plain C++: the reference the SIMD targets are checked against. _open gives the
+/// windows not proven, _keeps whether there is one.
+[[nodiscard]] std::uint16_t split_filter_open(const PlaneBatch& plane, std::size_t row, bool vf, int levels = kSplitLevels);
 [[nodiscard]] bool split_filter_keeps(const PlaneBatch& plane, std::size_t row, bool vf, int levels = kSplitLevels);
 
 }  // namespace ccdlab

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "framework/narrow/narrow_phase.hpp"
+#include "framework/narrow/proximity_filter.hpp"
 #include "framework/narrow/split_filter.hpp"
 #include "framework/pipeline/brute_force.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
@@ -69,6 +70,17 @@ TEST(PlaneFilter, EverySimdTargetAgreesWithThePlainVersion) {
   }
 }
 
+/// Row 0: the VF query, row 1: the EE query, as the narrow phase stages them (NarrowPhase::cull_plane).
+PlaneBatch rows_of(const VertexFaceQuery& q, const EdgeEdgeQuery& r) {
+  PlaneBatch b;
+  b.resize(2);
+  b.set(0, q.v_t0 - q.f0_t0, q.v_t1 - q.f0_t1, q.f1_t0 - q.f0_t0, q.f1_t1 - q.f0_t1, q.f2_t0 - q.f0_t0,
+        q.f2_t1 - q.f0_t1, q.f0_t1 - q.f0_t0);
+  b.set(1, r.eb0_t0 - r.ea0_t0, r.eb0_t1 - r.ea0_t1, r.ea1_t0 - r.ea0_t0, r.ea1_t1 - r.ea0_t1,
+        r.eb1_t0 - r.eb0_t0, r.eb1_t1 - r.eb0_t1, r.ea0_t1 - r.ea0_t0);
+  return b;
+}
+
 TEST(PlaneFilter, NeverDropsAPairTheFloatTesterReports) {
   // Random VF and EE queries in near contact (at thickness 0 and > 0): whatever the tester reports as a hit,
   // stages 2 and 3 keep, at the reach the tester declares.
@@ -82,12 +94,7 @@ TEST(PlaneFilter, NeverDropsAPairTheFloatTesterReports) {
       auto p = [&] { return Vec3(u(rng), u(rng), 0.1 * u(rng)); };
       VertexFaceQuery q{p(), p(), p(), p(), p(), p(), p(), p()};
       EdgeEdgeQuery r{p(), p(), p(), p(), p(), p(), p(), p()};
-      PlaneBatch b;
-      b.resize(2);
-      b.set(0, q.v_t0 - q.f0_t0, q.v_t1 - q.f0_t1, q.f1_t0 - q.f0_t0, q.f1_t1 - q.f0_t1, q.f2_t0 - q.f0_t0,
-            q.f2_t1 - q.f0_t1, q.f0_t1 - q.f0_t0);
-      b.set(1, r.eb0_t0 - r.ea0_t0, r.eb0_t1 - r.ea0_t1, r.ea1_t0 - r.ea0_t0, r.ea1_t1 - r.ea0_t1,
-            r.eb1_t0 - r.eb0_t0, r.eb1_t1 - r.eb0_t1, r.ea0_t1 - r.ea0_t0);
+      PlaneBatch b = rows_of(q, r);
       std::uint8_t keep[2];
       plane_filter(b, reach, keep);
       const bool hit_vf = tester.vertex_face(q).hit, hit_ee = tester.edge_edge(r).hit;
@@ -129,16 +136,97 @@ TEST(SplitFilter, EverySimdTargetAgreesWithThePlainVersion) {
     plane_filter(b, reach, stage2.data());
     for (const int levels : {kSplitCoarseLevels, kSplitLevels}) {
       std::vector<std::uint8_t> expect(n);
-      std::size_t culled = 0;
-      for (std::size_t i = 0; i < n; ++i) culled += !(expect[i] = split_filter_keeps(b, i, i < nvf, levels));
+      std::vector<std::uint16_t> expect_open(n);
+      std::size_t culled = 0, partly_open = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        expect_open[i] = split_filter_open(b, i, i < nvf, levels);
+        culled += !(expect[i] = split_filter_keeps(b, i, i < nvf, levels));
+        EXPECT_EQ(expect[i], expect_open[i] != 0);
+        partly_open += expect_open[i] != 0 && expect_open[i] != (1u << (1 << levels)) - 1;
+      }
       EXPECT_GT(culled, n / 10);
+      EXPECT_GT(partly_open, n / 20);  // the masks mean something: many rows have some windows proven, not all
       for_each_simd_target([&](const char* target) {
         std::vector<std::uint8_t> keep(n, 1);
-        split_filter(b, 0, nvf, true, keep.data(), levels);
-        split_filter(b, nvf, n, false, keep.data(), levels);
+        std::vector<std::uint16_t> open(n, 0xABCD);
+        split_filter(b, 0, nvf, true, keep.data(), levels, open.data());
+        split_filter(b, nvf, n, false, keep.data(), levels, open.data());
         EXPECT_EQ(keep, expect) << target << " levels " << levels;
+        EXPECT_EQ(open, expect_open) << target << " levels " << levels;
       });
     }
+  }
+}
+
+Eigen::Matrix3d random_rotation(std::mt19937& rng) {
+  std::normal_distribution<double> g;
+  return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+}
+
+/// A VF or EE query whose features come about `gap` apart at time `t_star` — off the face's (the other edge's)
+/// plane, or `beside` it, in that plane (where f = 0: stages 2 and 3 cannot tell) — moving with random velocities
+/// of size up to `speed` over the step.
+VertexFaceQuery vf_near(std::mt19937& rng, double t_star, double gap, double speed, bool beside) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto r = [&] { return Vec3(u(rng), u(rng), u(rng)); };
+  const Vec3 f0(0, 0, 0), f1(1, 0.1 * u(rng), 0), f2(0.2 * u(rng), 1, 0);
+  const Vec3 p = beside ? Vec3(std::min(0.0, f2.x()) - gap, 0.3, 0) : Vec3(0.3 * f1 + 0.3 * f2 + Vec3(0, 0, gap));
+  std::array<Vec3, 4> x{p, f0, f1, f2}, v;
+  for (Vec3& w : v) w = speed * r();
+  const Eigen::Matrix3d R = random_rotation(rng);  // so that boxes (stage 3) do not separate them
+  auto at = [&](int k, double t) { return Vec3(R * (x[k] + (t - t_star) * v[k])); };
+  return {at(0, 0), at(1, 0), at(2, 0), at(3, 0), at(0, 1), at(1, 1), at(2, 1), at(3, 1)};
+}
+EdgeEdgeQuery ee_near(std::mt19937& rng, double t_star, double gap, double speed, bool beside) {
+  std::uniform_real_distribution<double> u(-1, 1), s(0.1, 0.9);
+  auto r = [&] { return Vec3(u(rng), u(rng), u(rng)); };
+  const double sa = s(rng), sb = s(rng);
+  const Vec3 off = beside ? Vec3(1 - sa + gap, 0, 0) : Vec3(0, 0, gap);  // beside: b crosses a's line past a1
+  const Vec3 a0(-sa, 0, 0), a1(1 - sa, 0, 0), b0 = Vec3(0, -sb, 0) + off, b1 = Vec3(0, 1 - sb, 0) + off;
+  std::array<Vec3, 4> x{a0, a1, b0, b1}, v;
+  for (Vec3& w : v) w = speed * r();
+  const Eigen::Matrix3d R = random_rotation(rng);  // so that boxes (stage 3) do not separate them
+  auto at = [&](int k, double t) { return Vec3(R * (x[k] + (t - t_star) * v[k])); };
+  return {at(0, 0), at(1, 0), at(2, 0), at(3, 0), at(0, 1), at(1, 1), at(2, 1), at(3, 1)};
+}
+
+TEST(ProximityFilter, NeverDropsAPairTheFloatTesterReports) {
+  // Features that come within (or just beyond) the reach at a random time, at thickness 0 and > 0, slow and fast:
+  // whatever the float tester reports, stages 2, 3 and 4 keep. Stage 4 must also drop nearly all the slow pairs
+  // that stay far apart (≥ 0.1, moving ≤ 0.05·√3) that stage 3 keeps, or this test would prove nothing.
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> time(0, 1), unit(0, 1);
+  for (double eta : {0.0, 0.01}) {
+    FloatTester tester(FloatTester::Params{eta});
+    const CullReach reach = *tester.cull_reach();
+    int hits = 0, far_kept = 0, far_culled = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const double t_star = i % 5 == 0 ? std::floor(16 * time(rng)) / 16 : time(rng);  // window ends too
+      const double scale = eta + 1e-6;
+      const double gap = i % 3 == 0 ? scale * unit(rng) : i % 3 == 1 ? scale * (1 + unit(rng)) : 0.3 * unit(rng);
+      const double speed = i % 2 == 0 ? 0.05 : 2.0;
+      const bool beside = i % 4 < 2;
+      const VertexFaceQuery q = vf_near(rng, t_star, gap, speed, beside);
+      const EdgeEdgeQuery r = ee_near(rng, t_star, gap, speed, beside);
+      PlaneBatch b = rows_of(q, r);
+      std::uint8_t keep[2];
+      plane_filter(b, reach, keep);
+      const bool hit[2] = {tester.vertex_face(q).hit, tester.edge_edge(r).hit};
+      for (int k = 0; k < 2; ++k) {
+        const std::uint16_t open = keep[k] ? split_filter_open(b, std::size_t(k), k == 0) : 0;
+        const bool stage4 = open && proximity_filter_keeps(b, std::size_t(k), k == 0, open, kSplitLevels);
+        hits += hit[k];
+        const bool far = speed < 1 && gap >= 0.1;
+        far_kept += far && open;
+        far_culled += far && open && !stage4;
+        if (hit[k]) {
+          ASSERT_TRUE(stage4) << (k ? "EE" : "VF") << " eta " << eta << " query " << i << " gap " << gap;
+        }
+      }
+    }
+    EXPECT_GT(hits, 4000) << "eta " << eta;
+    EXPECT_GT(far_kept, 300) << "eta " << eta;
+    EXPECT_GT(far_culled, far_kept * 9 / 10) << "eta " << eta << ": stage 4 dropped too few to mean anything";
   }
 }
 
