@@ -473,6 +473,11 @@ void CcdPipeline::test_orphans(StepResult& result) {
   const std::size_t nvf = orphans.vf.size(), n = nvf + orphans.ee.size();
   narrow_in_parallel(n, kOrphanChunk, "orphans", result,
                      [&](std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters& lc) {
+                       if (!cull) {  // the chunk as it is
+                         if (b < nvf) batch.vf.insert(batch.vf.end(), orphans.vf.begin() + b, orphans.vf.begin() + std::min(e, nvf));
+                         if (e > nvf) batch.ee.insert(batch.ee.end(), orphans.ee.begin() + (std::max(b, nvf) - nvf), orphans.ee.begin() + (e - nvf));
+                         return;
+                       }
                        for (std::size_t i = b; i < std::min(e, nvf); ++i) {
                          const VertexFacePair& p = orphans.vf[i];
                          if (cull && same_skipped_patch(reps.face_of_vertex(p.v), p.f)) ++lc.orphans_culled;
