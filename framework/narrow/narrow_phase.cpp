@@ -151,17 +151,19 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   c.plane_ns += ns_since(t);
   // Stage 3 on stage 2's survivors, from the coefficients, threshold and reach stage 2 left in the rows: halves,
   // then sixteenths on what the halves keep (split_filter.hpp), which also leave each row's open windows.
-  std::size_t kept_vf = batch.vf.size(), rows = kept_vf + batch.ee.size();
-  scratch.keep.assign(rows, 1);
-  split_filter(plane, 0, kept_vf, true, scratch.keep.data(), kSplitCoarseLevels);
-  split_filter(plane, kept_vf, rows, false, scratch.keep.data(), kSplitCoarseLevels);
-  plane.compact(scratch.keep.data());  // the rows the next pass reads
-  compact(batch, scratch.keep);
-  kept_vf = batch.vf.size(), rows = kept_vf + batch.ee.size();
-  scratch.keep.assign(rows, 1);
-  scratch.open.resize(rows);
-  split_filter(plane, 0, kept_vf, true, scratch.keep.data(), kSplitLevels, scratch.open.data());
-  split_filter(plane, kept_vf, rows, false, scratch.keep.data(), kSplitLevels, scratch.open.data());
+  std::size_t kept_vf = 0, rows = 0;
+  for (const int levels : {kSplitCoarseLevels, kSplitLevels}) {
+    const bool last = levels == kSplitLevels;
+    kept_vf = batch.vf.size(), rows = kept_vf + batch.ee.size();
+    scratch.keep.assign(rows, 1);
+    scratch.open.resize(last ? rows : 0);
+    std::uint16_t* open = last ? scratch.open.data() : nullptr;
+    split_filter(plane, 0, kept_vf, true, scratch.keep.data(), levels, open);
+    split_filter(plane, kept_vf, rows, false, scratch.keep.data(), levels, open);
+    if (last) break;  // stage 4 reads these rows in place, and compacts once
+    plane.compact(scratch.keep.data());  // the rows the next pass reads
+    compact(batch, scratch.keep);
+  }
   std::size_t split_kept = 0;
   for (std::size_t i = 0; i < rows; ++i) split_kept += scratch.keep[i];
   c.split_culled += plane_kept - split_kept;

@@ -480,12 +480,12 @@ void CcdPipeline::test_orphans(StepResult& result) {
                        }
                        for (std::size_t i = b; i < std::min(e, nvf); ++i) {
                          const VertexFacePair& p = orphans.vf[i];
-                         if (cull && same_skipped_patch(reps.face_of_vertex(p.v), p.f)) ++lc.orphans_culled;
+                         if (same_skipped_patch(reps.face_of_vertex(p.v), p.f)) ++lc.orphans_culled;
                          else batch.vf.push_back(p);
                        }
                        for (std::size_t i = std::max(b, nvf); i < e; ++i) {
                          const EdgeEdgePair& p = orphans.ee[i - nvf];
-                         if (cull && same_skipped_patch(reps.face_of_edge(p.a), reps.face_of_edge(p.b))) ++lc.orphans_culled;
+                         if (same_skipped_patch(reps.face_of_edge(p.a), reps.face_of_edge(p.b))) ++lc.orphans_culled;
                          else batch.ee.push_back(p);
                        }
                      });
