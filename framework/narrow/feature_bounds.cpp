@@ -1,21 +1,60 @@
 #include "framework/narrow/feature_bounds.hpp"
 
+#include <cmath>
+#include <limits>
+
 namespace ccdlab {
+namespace {
+
+constexpr std::size_t kChunk = 4096;
+
+}  // namespace
 
 void FeatureBounds::update(const Positions& x_t0, const Positions& x_t1, double thickness, int threads,
                            PhaseTrace& trace) {
-  vertex_.resize(x_t0.size());
-  parallel_chunks(x_t0.size(), 4096, threads, trace, [&](std::size_t b, std::size_t e, int) {
+  constexpr int kAxes = PaddedDop::kAxes;
+  const std::size_t n = x_t0.size();
+  vertex_.resize(n);
+  // The float 26-DOPs, and the range of every axis per chunk for the coarse grid.
+  std::vector<AxisRange> chunk_range((n + kChunk - 1) / kChunk);
+  parallel_chunks(n, kChunk, threads, trace, [&](std::size_t b, std::size_t e, int) {
+    AxisRange r;
     for (std::size_t v = b; v < e; ++v) {
       KDop<26> dop;
       dop.grow(std::array<const Vec3*, 2>{&x_t0[v], &x_t1[v]});
       dop.inflate(0.5 * thickness);
       PaddedDop& out = vertex_[v];
       for (int i = 0; i < PaddedDop::kLanes; ++i) {
-        out.min[i] = i < PaddedDop::kAxes ? dop.min(i) : 0.0f;
-        out.max[i] = i < PaddedDop::kAxes ? dop.max(i) : 0.0f;
+        out.min[i] = i < kAxes ? dop.min(i) : 0.0f;
+        out.max[i] = i < kAxes ? dop.max(i) : 0.0f;
       }
+      for (int i = 0; i < kAxes; ++i) r.lo[i] = std::min(r.lo[i], out.min[i]), r.hi[i] = std::max(r.hi[i], out.max[i]);
     }
+    chunk_range[b / kChunk] = r;
+  });
+  AxisRange all;
+  for (const AxisRange& r : chunk_range)
+    for (int i = 0; i < kAxes; ++i) all.lo[i] = std::min(all.lo[i], r.lo[i]), all.hi[i] = std::max(all.hi[i], r.hi[i]);
+  PhaseTrace coarse;
+  update_coarse(all, threads, coarse);
+  trace.task_ms.insert(trace.task_ms.end(), coarse.task_ms.begin(), coarse.task_ms.end());
+}
+
+void FeatureBounds::update_coarse(const AxisRange& range, int threads, PhaseTrace& trace) {
+  // Per lane: the grid's origin, scale and offset. Padding lanes map their zeros to 0. An empty, flat or
+  // non-finite range has scale 0: every finite bound maps to one grid value (±∞ to a clamp, through NaN), so
+  // that axis separates nothing.
+  alignas(64) float lo[CoarseDop::kLanes] = {}, scale[CoarseDop::kLanes] = {}, offset[CoarseDop::kLanes] = {};
+  for (int i = 0; i < PaddedDop::kAxes; ++i) {
+    const double extent = double(range.hi[i]) - double(range.lo[i]);
+    const bool usable = std::isfinite(extent) && extent > 0;
+    lo[i] = usable ? range.lo[i] : 0.0f;
+    scale[i] = usable ? float(CoarseDop::kSteps / extent) : 0.0f;
+    offset[i] = float(CoarseDop::kOffset);
+  }
+  coarse_.resize(vertex_.size());
+  parallel_chunks(vertex_.size(), kChunk, threads, trace, [&](std::size_t b, std::size_t e, int) {
+    detail::quantize_dops(vertex_.data() + b, coarse_.data() + b, e - b, lo, scale, offset);
   });
 }
 

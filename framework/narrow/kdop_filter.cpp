@@ -1,5 +1,7 @@
-// Stage 1 over a batch in SIMD: one vertex 26-DOP is 16 + 16 floats, so a pair is 2 (AVX-512) to 8 (128-bit)
-// loads per vertex. Highway compiles this file once per target and picks one at run time.
+// Stage 1 over a batch in SIMD (feature_bounds.hpp). The coarse test, run on every pair: a vertex's 16-bit
+// 26-DOP is 16 + 16 int16, one 256-bit load per half (two 128-bit ones on SSE4). The float test, run on what
+// stages 2–4 leave: 16 + 16 floats, 2 (AVX-512) to 8 (128-bit) loads per vertex. Highway compiles this file
+// once per target and picks one at run time.
 #include "framework/narrow/feature_bounds.hpp"
 
 #undef HWY_TARGET_INCLUDE
@@ -48,6 +50,72 @@ void KdopKeepEe(const PaddedDop* dops, const Edge* edges, const EdgeEdgePair* pa
   }
 }
 
+// The coarse copy of vertices [0, n): q(x) = floor((x − lo)·scale − offset) per lane, in float (each operation
+// rounds monotonically, so q is monotone: all CoarseDop's argument needs), clamped to ±kClamp, a NaN sent to the
+// clamp that never separates; maxima stored negated.
+void QuantizeDops(const PaddedDop* in, CoarseDop* out, std::size_t n, const float* lo, const float* scale,
+                  const float* offset) {
+  const hn::CappedTag<float, CoarseDop::kLanes> df;
+  const hn::Rebind<std::int32_t, decltype(df)> di;
+  const hn::Rebind<std::int16_t, decltype(df)> d16;
+  const std::size_t N = hn::Lanes(df);
+  const auto clamp_hi = hn::Set(df, float(CoarseDop::kClamp)), clamp_lo = hn::Neg(clamp_hi);
+  const auto grid = [&](auto x, std::size_t k, auto if_nan) {
+    const auto g = hn::Sub(hn::Mul(hn::Sub(x, hn::Load(df, lo + k)), hn::Load(df, scale + k)), hn::Load(df, offset + k));
+    return hn::Floor(hn::Min(hn::Max(hn::IfThenElse(hn::IsNaN(g), if_nan, g), clamp_lo), clamp_hi));
+  };
+  for (std::size_t v = 0; v < n; ++v)
+    for (std::size_t k = 0; k < std::size_t(CoarseDop::kLanes); k += N) {
+      const auto q_min = grid(hn::Load(df, in[v].min + k), k, clamp_lo);
+      const auto q_max = grid(hn::Load(df, in[v].max + k), k, clamp_hi);
+      hn::Store(hn::DemoteTo(d16, hn::ConvertTo(di, q_min)), d16, out[v].min + k);
+      hn::Store(hn::DemoteTo(d16, hn::ConvertTo(di, hn::Neg(q_max))), d16, out[v].neg_max + k);
+    }
+}
+
+// Coarse: unions are lane-wise minima (of minima, and of negated maxima); separated where a saturating
+// min + neg_max of the other side is > 0 (CoarseDop).
+void CoarseKeepVf(const CoarseDop* dops, const Face* faces, const VertexFacePair* pairs, std::size_t n,
+                  std::uint8_t* keep) {
+  const hn::CappedTag<std::int16_t, CoarseDop::kLanes> d;
+  const std::size_t N = hn::Lanes(d);
+  const auto zero = hn::Zero(d);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Face& f = faces[pairs[i].f];
+    const CoarseDop &p = dops[pairs[i].v], &a = dops[f[0]], &b = dops[f[1]], &c = dops[f[2]];
+    auto apart = hn::Lt(zero, zero);  // all false
+    for (std::size_t k = 0; k < std::size_t(CoarseDop::kLanes); k += N) {
+      const auto lo = hn::Min(hn::Min(hn::Load(d, a.min + k), hn::Load(d, b.min + k)), hn::Load(d, c.min + k));
+      const auto neg_hi =
+          hn::Min(hn::Min(hn::Load(d, a.neg_max + k), hn::Load(d, b.neg_max + k)), hn::Load(d, c.neg_max + k));
+      apart = hn::Or(apart, hn::Or(hn::Gt(hn::SaturatedAdd(hn::Load(d, p.min + k), neg_hi), zero),
+                                   hn::Gt(hn::SaturatedAdd(lo, hn::Load(d, p.neg_max + k)), zero)));
+    }
+    keep[i] = hn::AllFalse(d, apart);
+  }
+}
+
+void CoarseKeepEe(const CoarseDop* dops, const Edge* edges, const EdgeEdgePair* pairs, std::size_t n,
+                  std::uint8_t* keep) {
+  const hn::CappedTag<std::int16_t, CoarseDop::kLanes> d;
+  const std::size_t N = hn::Lanes(d);
+  const auto zero = hn::Zero(d);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Edge &ea = edges[pairs[i].a], &eb = edges[pairs[i].b];
+    const CoarseDop &a0 = dops[ea[0]], &a1 = dops[ea[1]], &b0 = dops[eb[0]], &b1 = dops[eb[1]];
+    auto apart = hn::Lt(zero, zero);
+    for (std::size_t k = 0; k < std::size_t(CoarseDop::kLanes); k += N) {
+      const auto alo = hn::Min(hn::Load(d, a0.min + k), hn::Load(d, a1.min + k));
+      const auto aneg_hi = hn::Min(hn::Load(d, a0.neg_max + k), hn::Load(d, a1.neg_max + k));
+      const auto blo = hn::Min(hn::Load(d, b0.min + k), hn::Load(d, b1.min + k));
+      const auto bneg_hi = hn::Min(hn::Load(d, b0.neg_max + k), hn::Load(d, b1.neg_max + k));
+      apart = hn::Or(apart, hn::Or(hn::Gt(hn::SaturatedAdd(alo, bneg_hi), zero),
+                                   hn::Gt(hn::SaturatedAdd(blo, aneg_hi), zero)));
+    }
+    keep[i] = hn::AllFalse(d, apart);
+  }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace ccdlab
 HWY_AFTER_NAMESPACE();
@@ -57,6 +125,16 @@ namespace ccdlab {
 
 HWY_EXPORT(KdopKeepVf);
 HWY_EXPORT(KdopKeepEe);
+HWY_EXPORT(CoarseKeepVf);
+HWY_EXPORT(CoarseKeepEe);
+HWY_EXPORT(QuantizeDops);
+
+namespace detail {
+void quantize_dops(const PaddedDop* in, CoarseDop* out, std::size_t n, const float* lo, const float* scale,
+                   const float* offset) {
+  HWY_DYNAMIC_DISPATCH(QuantizeDops)(in, out, n, lo, scale, offset);
+}
+}  // namespace detail
 
 void FeatureBounds::vf_keep(const TriMesh& mesh, std::span<const VertexFacePair> pairs, std::uint8_t* keep) const {
   HWY_DYNAMIC_DISPATCH(KdopKeepVf)(vertex_.data(), mesh.faces().data(), pairs.data(), pairs.size(), keep);
@@ -64,6 +142,16 @@ void FeatureBounds::vf_keep(const TriMesh& mesh, std::span<const VertexFacePair>
 
 void FeatureBounds::ee_keep(const TriMesh& mesh, std::span<const EdgeEdgePair> pairs, std::uint8_t* keep) const {
   HWY_DYNAMIC_DISPATCH(KdopKeepEe)(vertex_.data(), mesh.edges().data(), pairs.data(), pairs.size(), keep);
+}
+
+void FeatureBounds::vf_keep_coarse(const TriMesh& mesh, std::span<const VertexFacePair> pairs,
+                                   std::uint8_t* keep) const {
+  HWY_DYNAMIC_DISPATCH(CoarseKeepVf)(coarse_.data(), mesh.faces().data(), pairs.data(), pairs.size(), keep);
+}
+
+void FeatureBounds::ee_keep_coarse(const TriMesh& mesh, std::span<const EdgeEdgePair> pairs,
+                                   std::uint8_t* keep) const {
+  HWY_DYNAMIC_DISPATCH(CoarseKeepEe)(coarse_.data(), mesh.edges().data(), pairs.data(), pairs.size(), keep);
 }
 
 }  // namespace ccdlab

@@ -100,21 +100,27 @@ void NarrowPhase::run(NarrowScratch& scratch, Contacts& out, NarrowCounters& c, 
     return;
   }
   if (cull) {
-    cull_kdop(scratch, c);
+    cull_kdop(scratch, c, true);
     if (const auto reach = tester_.cull_reach()) {
       cull_plane(scratch, *reach, c);  // stages 2, 3 and 4
     }
+    cull_kdop(scratch, c, false);
   }
   test(batch, out, c);
 }
 
-void NarrowPhase::cull_kdop(NarrowScratch& scratch, NarrowCounters& c) const {
+void NarrowPhase::cull_kdop(NarrowScratch& scratch, NarrowCounters& c, bool coarse) const {
   const auto t = Clock::now();
   FeatureBatch& batch = scratch.batch;
   const std::size_t nvf = batch.vf.size(), n = nvf + batch.ee.size();
   scratch.keep.resize(n);
-  bounds_.vf_keep(mesh_, batch.vf, scratch.keep.data());
-  bounds_.ee_keep(mesh_, batch.ee, scratch.keep.data() + nvf);
+  if (coarse) {
+    bounds_.vf_keep_coarse(mesh_, batch.vf, scratch.keep.data());
+    bounds_.ee_keep_coarse(mesh_, batch.ee, scratch.keep.data() + nvf);
+  } else {
+    bounds_.vf_keep(mesh_, batch.vf, scratch.keep.data());
+    bounds_.ee_keep(mesh_, batch.ee, scratch.keep.data() + nvf);
+  }
   compact(batch, scratch.keep);
   c.kdop_culled += n - batch.vf.size() - batch.ee.size();
   c.kdop_ns += ns_since(t);

@@ -4,6 +4,7 @@
 //
 //   gather   the feature pairs each candidate represents (representatives.hpp), or a chunk of orphans
 //   stage 1  swept feature 26-DOPs overlap (feature_bounds.hpp, SIMD)     every mode; defines the contact set
+//            (batched: a coarse 16-bit copy first, the float test itself after stage 4)
 //   stage 2  certified plane test, SIMD over the batch (plane_filter.hpp)   batched mode, testers with a reach
 //   stage 3  the plane test and the boxes on parts of the step (split_filter.hpp)               〃
 //   stage 4  the features' distance on the sixteenths stage 3 left open (proximity_filter.hpp)  〃
@@ -58,7 +59,9 @@ class NarrowPhase {
   [[nodiscard]] std::size_t memory_bytes() const { return bounds_.memory_bytes(); }
 
  private:
-  void cull_kdop(NarrowScratch& scratch, NarrowCounters& c) const;
+  /// Stage 1 (feature_bounds.hpp): the coarse 16-bit test on every pair first, the float one (the definition)
+  /// on what stages 2–4 leave. Both count as stage 1.
+  void cull_kdop(NarrowScratch& scratch, NarrowCounters& c, bool coarse) const;
   void cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCounters& c) const;
   void test(const FeatureBatch& batch, Contacts& out, NarrowCounters& c) const;
   void test_vf(Index v, Index f, Contacts& out, NarrowCounters& c) const;

@@ -78,7 +78,7 @@ std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std
       std::visit([](const auto& vec) { return std::uint64_t(sizeof(vec[0])); }, make_wide_bvs(k));
   // One wide node per inner node (f − 1): its lanes and bounds, plus a slot per node.
   const std::uint64_t wide = width == 4 ? f * (sizeof(WideLayout::Lanes) + wide_bounds) + 2 * f * sizeof(Index) : 0;
-  const std::uint64_t feature_boxes = v * sizeof(PaddedDop);
+  const std::uint64_t feature_boxes = v * FeatureBounds::kBytesPerVertex;
   const std::uint64_t ownership = (v + e) * sizeof(Index) + f;
   const std::uint64_t orphans = std::uint64_t(orphan_pairs) * sizeof(EdgeEdgePair);
   const std::uint64_t frames = 2 * v * sizeof(Vec3);

@@ -6,8 +6,10 @@
 #include <hwy/targets.h>
 
 #include <array>
+#include <limits>
 #include <random>
 #include <set>
+#include <string>
 
 #include "framework/narrow/narrow_phase.hpp"
 #include "framework/narrow/proximity_filter.hpp"
@@ -248,35 +250,112 @@ TEST(SplitFilter, SixteenthsCullEveryPairTheHalvesCull) {
   }
 }
 
+/// Every VF pair (v ∉ f) and EE pair (no shared vertex) of a mesh.
+struct AllFeaturePairs {
+  std::vector<VertexFacePair> vf;
+  std::vector<EdgeEdgePair> ee;
+  explicit AllFeaturePairs(const TriMesh& mesh) {
+    for (Index v = 0; v < mesh.num_vertices(); ++v)
+      for (Index f = 0; f < mesh.num_faces(); ++f)
+        if (!contains_vertex(mesh.face(f), v)) vf.push_back({v, f});
+    for (Index a = 0; a < mesh.num_edges(); ++a)
+      for (Index b = a + 1; b < mesh.num_edges(); ++b)
+        if (!shares_vertex(mesh.edge(a), mesh.edge(b))) ee.push_back({a, b});
+  }
+  /// keep flags of the plain float or coarse test, VF then EE.
+  std::vector<std::uint8_t> flags(const TriMesh& mesh, const FeatureBounds& bounds, bool coarse) const {
+    std::vector<std::uint8_t> out;
+    for (const auto& p : vf)
+      out.push_back(coarse ? bounds.vf_may_touch_coarse(p.v, mesh.face(p.f)) : bounds.vf_may_touch(p.v, mesh.face(p.f)));
+    for (const auto& p : ee) {
+      const Edge &a = mesh.edge(p.a), &b = mesh.edge(p.b);
+      out.push_back(coarse ? bounds.ee_may_touch_coarse(a, b) : bounds.ee_may_touch(a, b));
+    }
+    return out;
+  }
+};
+
 TEST(FeatureBounds, SimdKeepAgreesWithThePlainVersionOnEveryTarget) {
   MeshData g = test::grid(12, 12);
   TriMesh mesh(Index(g.positions.size()), g.faces);
   std::mt19937 rng(5);
   Positions x0 = test::crumple(g.positions, rng, 0.05), x1 = test::crumple(g.positions, rng, 0.05);
-  FeatureBounds bounds;
-  PhaseTrace trace;
-  bounds.update(x0, x1, 0.01, 1, trace);
-  std::vector<VertexFacePair> vf;
-  std::vector<EdgeEdgePair> ee;
-  for (Index v = 0; v < mesh.num_vertices(); ++v)
-    for (Index f = 0; f < mesh.num_faces(); ++f)
-      if (!contains_vertex(mesh.face(f), v)) vf.push_back({v, f});
-  for (Index a = 0; a < mesh.num_edges(); ++a)
-    for (Index b = a + 1; b < mesh.num_edges(); ++b)
-      if (!shares_vertex(mesh.edge(a), mesh.edge(b))) ee.push_back({a, b});
-  std::vector<std::uint8_t> expect_vf, expect_ee;
-  for (const auto& p : vf) expect_vf.push_back(bounds.vf_may_touch(p.v, mesh.face(p.f)));
-  for (const auto& p : ee) expect_ee.push_back(bounds.ee_may_touch(mesh.edge(p.a), mesh.edge(p.b)));
-  const auto kept = std::count(expect_vf.begin(), expect_vf.end(), 1) + std::count(expect_ee.begin(), expect_ee.end(), 1);
-  EXPECT_GT(kept, 100);
-  EXPECT_LT(std::size_t(kept), (vf.size() + ee.size()) / 2);
+  const AllFeaturePairs pairs(mesh);
+  std::vector<std::uint8_t> first_coarse;
   for_each_simd_target([&](const char* target) {
-    std::vector<std::uint8_t> keep_vf(vf.size()), keep_ee(ee.size());
-    bounds.vf_keep(mesh, vf, keep_vf.data());
-    bounds.ee_keep(mesh, ee, keep_ee.data());
-    EXPECT_EQ(keep_vf, expect_vf) << target;
-    EXPECT_EQ(keep_ee, expect_ee) << target;
+    FeatureBounds bounds;  // the coarse copy is made by this target's quantizer
+    PhaseTrace trace;
+    bounds.update(x0, x1, 0.01, 1, trace);
+    const auto expect = pairs.flags(mesh, bounds, false), expect_coarse = pairs.flags(mesh, bounds, true);
+    const auto kept = std::count(expect.begin(), expect.end(), 1);
+    EXPECT_GT(kept, 100);
+    EXPECT_LT(std::size_t(kept), expect.size() / 2);
+    std::vector<std::uint8_t> keep(expect.size()), keep_coarse(expect.size());
+    const std::size_t nvf = pairs.vf.size();
+    bounds.vf_keep(mesh, pairs.vf, keep.data());
+    bounds.ee_keep(mesh, pairs.ee, keep.data() + nvf);
+    bounds.vf_keep_coarse(mesh, pairs.vf, keep_coarse.data());
+    bounds.ee_keep_coarse(mesh, pairs.ee, keep_coarse.data() + nvf);
+    EXPECT_EQ(keep, expect) << target;
+    EXPECT_EQ(keep_coarse, expect_coarse) << target;
+    if (first_coarse.empty()) first_coarse = keep_coarse;
+    EXPECT_EQ(keep_coarse, first_coarse) << target << ": the quantizers of two targets disagree";
   });
+}
+
+TEST(FeatureBounds, TheCoarseTestKeepsEveryPairTheFloatTestKeeps) {
+  // Stage 1 runs the coarse test on every pair and the float one only at the end: a pair the float test keeps
+  // and the coarse one dropped would be a lost contact. Ordinary frames, and the grid's edge cases: a flat axis
+  // (extent 0), coordinates far from the origin (a float grid step of 1), tiny ones (denormal extents), NaN,
+  // ±∞ and thickness. Two sheets side by side, the second starting exactly where the first ends (x = 1), so
+  // that many pairs touch at equality: a grid that rounded minima and maxima apart would drop them.
+  MeshData g = test::concat(test::grid(10, 10), test::grid(10, 10));
+  for (std::size_t i = g.positions.size() / 2; i < g.positions.size(); ++i)
+    g.positions[i].x() = 1.0 + 0.7 * g.positions[i].x();  // x = 1 off the grid's integer steps
+  TriMesh mesh(Index(g.positions.size()), g.faces);
+  const AllFeaturePairs pairs(mesh);
+  std::mt19937 rng(17);
+  struct Case {
+    const char* name;
+    Positions x0, x1;
+    double thickness;
+  };
+  std::vector<Case> cases;
+  cases.push_back({"crumpled", test::crumple(g.positions, rng, 0.04), test::crumple(g.positions, rng, 0.04), 0.0});
+  cases.push_back({"crumpled, thick", test::crumple(g.positions, rng, 0.04), test::crumple(g.positions, rng, 0.04), 0.05});
+  cases.push_back({"flat", g.positions, g.positions, 0.0});
+  Case far{"far from the origin", test::crumple(g.positions, rng, 0.04), test::crumple(g.positions, rng, 0.04), 0.0};
+  for (Positions* x : {&far.x0, &far.x1})
+    for (Vec3& p : *x) p = 1e7 * Vec3(1, -1, 1) + 3.0 * p;
+  cases.push_back(far);
+  Case tiny{"tiny", test::crumple(g.positions, rng, 0.04), test::crumple(g.positions, rng, 0.04), 0.0};
+  for (Positions* x : {&tiny.x0, &tiny.x1})
+    for (Vec3& p : *x) p *= 1e-39;
+  cases.push_back(tiny);
+  Case nan{"NaN", test::crumple(g.positions, rng, 0.04), test::crumple(g.positions, rng, 0.04), 0.0};
+  nan.x1[7].y() = std::numeric_limits<double>::quiet_NaN();
+  cases.push_back(nan);
+  Case inf{"infinite", test::crumple(g.positions, rng, 0.04), test::crumple(g.positions, rng, 0.04), 0.0};
+  inf.x0[3].x() = std::numeric_limits<double>::infinity();
+  inf.x1[50].z() = -std::numeric_limits<double>::infinity();
+  cases.push_back(inf);
+  for (const Case& c : cases) {
+    FeatureBounds bounds;
+    PhaseTrace trace;
+    bounds.update(c.x0, c.x1, c.thickness, 1, trace);
+    const auto fine = pairs.flags(mesh, bounds, false), coarse = pairs.flags(mesh, bounds, true);
+    std::size_t fine_culled = 0, coarse_culled = 0;
+    for (std::size_t i = 0; i < fine.size(); ++i) {
+      ASSERT_TRUE(!fine[i] || coarse[i]) << c.name << ": pair " << i << " kept by the float test, dropped by the coarse one";
+      fine_culled += !fine[i];
+      coarse_culled += !coarse[i];
+    }
+    if (std::string(c.name).starts_with("crumpled")) {
+      // It is a filter worth running: it drops nearly all the float test drops.
+      EXPECT_GT(fine_culled, fine.size() / 2) << c.name;
+      EXPECT_GE(coarse_culled, fine_culled * 99 / 100) << c.name;
+    }
+  }
 }
 
 PipelineStrategies strategies(const char* tester, NarrowOptions narrow, int k, int threads) {
