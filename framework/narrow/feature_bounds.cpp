@@ -18,18 +18,10 @@ void FeatureBounds::update(const Positions& x_t0, const Positions& x_t1, double 
   // The float 26-DOPs, and the range of every axis per chunk for the coarse grid.
   std::vector<AxisRange> chunk_range((n + kChunk - 1) / kChunk);
   parallel_chunks(n, kChunk, threads, trace, [&](std::size_t b, std::size_t e, int) {
+    detail::swept_vertex_dops(x_t0.data() + b, x_t1.data() + b, e - b, 0.5 * thickness, vertex_.data() + b);
     AxisRange r;
-    for (std::size_t v = b; v < e; ++v) {
-      KDop<26> dop;
-      dop.grow(std::array<const Vec3*, 2>{&x_t0[v], &x_t1[v]});
-      dop.inflate(0.5 * thickness);
-      PaddedDop& out = vertex_[v];
-      for (int i = 0; i < PaddedDop::kLanes; ++i) {
-        out.min[i] = i < kAxes ? dop.min(i) : 0.0f;
-        out.max[i] = i < kAxes ? dop.max(i) : 0.0f;
-      }
-      for (int i = 0; i < kAxes; ++i) r.lo[i] = std::min(r.lo[i], out.min[i]), r.hi[i] = std::max(r.hi[i], out.max[i]);
-    }
+    for (std::size_t v = b; v < e; ++v)
+      for (int i = 0; i < kAxes; ++i) r.lo[i] = std::min(r.lo[i], vertex_[v].min[i]), r.hi[i] = std::max(r.hi[i], vertex_[v].max[i]);
     chunk_range[b / kChunk] = r;
   });
   AxisRange all;

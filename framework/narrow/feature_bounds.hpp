@@ -77,7 +77,15 @@ struct alignas(64) CoarseDop {
 };
 static_assert(sizeof(CoarseDop) == 64 && PaddedDop::kAxes <= CoarseDop::kLanes);
 
+/// A vertex's swept 26-DOP over the step (the points p at t0 and q at t1), inflated by r: KDop<26>::grow then
+/// inflate, padded. The plain version (compiled beside the SIMD one, kdop_filter.cpp, with the same rounding
+/// flags); FeatureBounds::update runs the same operations in SIMD.
+PaddedDop swept_vertex_dop(const Vec3& p, const Vec3& q, double r);
+
 namespace detail {
+/// swept_vertex_dop of vertices [0, n) in SIMD (kdop_filter.cpp), the same floats; a vertex with a non-finite
+/// coordinate takes the plain version.
+void swept_vertex_dops(const Vec3* x_t0, const Vec3* x_t1, std::size_t n, double r, PaddedDop* out);
 /// The coarse copy of n float 26-DOPs (SIMD, kdop_filter.cpp): per lane, g = (x − lo)·scale − offset.
 void quantize_dops(const PaddedDop* in, CoarseDop* out, std::size_t n, const float* lo, const float* scale,
                    const float* offset);

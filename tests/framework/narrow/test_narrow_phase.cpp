@@ -6,6 +6,7 @@
 #include <hwy/targets.h>
 
 #include <array>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <set>
@@ -301,6 +302,47 @@ TEST(FeatureBounds, SimdKeepAgreesWithThePlainVersionOnEveryTarget) {
     if (first_coarse.empty()) first_coarse = keep_coarse;
     EXPECT_EQ(keep_coarse, first_coarse) << target << ": the quantizers of two targets disagree";
   });
+}
+
+TEST(FeatureBounds, SimdSweptDopsAreThePlainOnesOnEveryTarget) {
+  // The vertices' float 26-DOPs define the contact set, so the SIMD pass must give the plain floats exactly: at
+  // every scale, with the two frames equal or not, at zero, at thickness 0 and > 0, and with non-finite input.
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-1, 1), e(-35, 35);
+  Positions x0, x1;
+  for (int i = 0; i < 4000; ++i) {
+    const double scale = std::pow(10.0, e(rng));
+    const Vec3 p = scale * Vec3(u(rng), u(rng), u(rng));
+    x0.push_back(p);
+    switch (i % 4) {
+      case 0: x1.push_back(p); break;                                                  // still
+      case 1: x1.push_back(p + 1e-9 * scale * Vec3(u(rng), u(rng), u(rng))); break;    // barely moving
+      default: x1.push_back(std::pow(10.0, e(rng)) * Vec3(u(rng), u(rng), u(rng)));  // anywhere
+    }
+  }
+  x0.push_back(Vec3::Zero()), x1.push_back(Vec3::Zero());
+  x0.push_back(Vec3(0, -0.0, 1)), x1.push_back(Vec3(-0.0, 0, 1));
+  x0.push_back(Vec3(3e38, -3e38, 1)), x1.push_back(Vec3(1e300, 1, 1));  // beyond float range
+  x0.push_back(Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0)), x1.push_back(Vec3(1, 2, 3));
+  x0.push_back(Vec3(1, 2, 3)), x1.push_back(Vec3(0, -std::numeric_limits<double>::infinity(), 0));
+  const auto same = [](float a, float b) { return a == b || (std::isnan(a) && std::isnan(b)); };
+  for (double r : {0.0, 1e-3, 0.37}) {
+    std::vector<PaddedDop> expect;
+    for (std::size_t v = 0; v < x0.size(); ++v) expect.push_back(swept_vertex_dop(x0[v], x1[v], r));
+    for_each_simd_target([&](const char* target) {
+      std::vector<PaddedDop> got(x0.size());
+      detail::swept_vertex_dops(x0.data(), x1.data(), x0.size(), r, got.data());
+      std::size_t wrong = 0;
+      for (std::size_t v = 0; v < x0.size(); ++v)
+        for (int i = 0; i < PaddedDop::kLanes; ++i) {
+          const bool ok = same(got[v].min[i], expect[v].min[i]) && same(got[v].max[i], expect[v].max[i]);
+          if (!ok && wrong++ < 3)
+            ADD_FAILURE() << target << " r " << r << " vertex " << v << " axis " << i << ": " << got[v].min[i] << " "
+                          << got[v].max[i] << " against " << expect[v].min[i] << " " << expect[v].max[i];
+        }
+      EXPECT_EQ(wrong, 0u) << target << " r " << r;
+    });
+  }
 }
 
 TEST(FeatureBounds, TheCoarseTestKeepsEveryPairTheFloatTestKeeps) {
