@@ -21,7 +21,7 @@
 //   - coarse, the same bounds on a 16-bit grid per axis, rounded outward: 64 bytes, one cache line, and a
 //     pair's test is a handful of integer SIMD operations. Stage 1 runs it on every pair. It keeps every pair
 //     the float test keeps (CoarseDop below), so running it first drops nothing the definition keeps; it keeps
-//     ~0.4% more (rod-twist), which stages 2–4 and the float test then drop.
+//     0.15% of what the float test drops (rod-twist), which stages 2–4 and the float test then drop.
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -117,7 +117,7 @@ class FeatureBounds {
     return !apart;
   }
 
-  /// The coarse test, plain: true whenever the float test above is (and ~0.4% more often).
+  /// The coarse test, plain: true whenever the float test above is (and for 0.15% of the pairs it drops).
   [[nodiscard]] bool vf_may_touch_coarse(Index v, const Face& f) const {
     const CoarseDop &p = coarse_[v], &a = coarse_[f[0]], &b = coarse_[f[1]], &c = coarse_[f[2]];
     bool apart = false;
