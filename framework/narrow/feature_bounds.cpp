@@ -1,7 +1,6 @@
 #include "framework/narrow/feature_bounds.hpp"
 
 #include <cmath>
-#include <limits>
 
 namespace ccdlab {
 namespace {
@@ -12,7 +11,6 @@ constexpr std::size_t kChunk = 4096;
 
 void FeatureBounds::update(const Positions& x_t0, const Positions& x_t1, double thickness, int threads,
                            PhaseTrace& trace) {
-  constexpr int kAxes = PaddedDop::kAxes;
   const std::size_t n = x_t0.size();
   vertex_.resize(n);
   // The float 26-DOPs, and the range of every axis per chunk for the coarse grid.
@@ -20,13 +18,11 @@ void FeatureBounds::update(const Positions& x_t0, const Positions& x_t1, double 
   parallel_chunks(n, kChunk, threads, trace, [&](std::size_t b, std::size_t e, int) {
     detail::swept_vertex_dops(x_t0.data() + b, x_t1.data() + b, e - b, 0.5 * thickness, vertex_.data() + b);
     AxisRange r;
-    for (std::size_t v = b; v < e; ++v)
-      for (int i = 0; i < kAxes; ++i) r.lo[i] = std::min(r.lo[i], vertex_[v].min[i]), r.hi[i] = std::max(r.hi[i], vertex_[v].max[i]);
+    for (std::size_t v = b; v < e; ++v) r.include(vertex_[v].min, vertex_[v].max);
     chunk_range[b / kChunk] = r;
   });
   AxisRange all;
-  for (const AxisRange& r : chunk_range)
-    for (int i = 0; i < kAxes; ++i) all.lo[i] = std::min(all.lo[i], r.lo[i]), all.hi[i] = std::max(all.hi[i], r.hi[i]);
+  for (const AxisRange& r : chunk_range) all.include(r.lo, r.hi);
   PhaseTrace coarse;
   update_coarse(all, threads, coarse);
   trace.task_ms.insert(trace.task_ms.end(), coarse.task_ms.begin(), coarse.task_ms.end());

@@ -17,8 +17,8 @@
 // Two copies of each vertex's 26-DOP, two tests (batched mode):
 //   - float, 13 minima then 13 maxima padded to 16 floats each (zero lanes never separate): 128 bytes, two
 //     cache lines. The test above, the definition; the batched narrow phase runs it last, on the few pairs
-//     stages 2–4 leave (NarrowPhase::confirm_kdop).
-//   - coarse, the same bounds on a 16-bit grid per axis, rounded outward: 64 bytes, one cache line, and a
+//     stages 2–4 leave (NarrowPhase::run).
+//   - coarse, the same bounds mapped monotonically onto a 16-bit grid per axis: 64 bytes, one cache line, and a
 //     pair's test is a handful of integer SIMD operations. Stage 1 runs it on every pair. It keeps every pair
 //     the float test keeps (CoarseDop below), so running it first drops nothing the definition keeps; it keeps
 //     0.15% of what the float test drops (rod-twist), which stages 2–4 and the float test then drop.
@@ -154,6 +154,10 @@ class FeatureBounds {
     AxisRange() {
       std::fill(std::begin(lo), std::end(lo), std::numeric_limits<float>::infinity());
       std::fill(std::begin(hi), std::end(hi), -std::numeric_limits<float>::infinity());
+    }
+    /// Widens the range to hold the bounds mins[i] … maxs[i] of every axis (a NaN bound leaves it as it is).
+    void include(const float* mins, const float* maxs) {
+      for (int i = 0; i < PaddedDop::kAxes; ++i) lo[i] = std::min(lo[i], mins[i]), hi[i] = std::max(hi[i], maxs[i]);
     }
   };
   /// The coarse copy of the float 26-DOPs, on the grid of `range` (the range of all of them).

@@ -100,11 +100,11 @@ void NarrowPhase::run(NarrowScratch& scratch, Contacts& out, NarrowCounters& c, 
     return;
   }
   if (cull) {
-    cull_kdop(scratch, c, true);
+    cull_kdop(scratch, c, /*coarse=*/true);  // stage 1 on the 16-bit grid, every pair
     if (const auto reach = tester_.cull_reach()) {
       cull_plane(scratch, *reach, c);  // stages 2, 3 and 4
     }
-    cull_kdop(scratch, c, false);
+    cull_kdop(scratch, c, /*coarse=*/false);  // stage 1's float test, the definition, on what is left
   }
   test(batch, out, c);
 }
