@@ -1,12 +1,17 @@
 // Micro-benchmarks of the sequential pipeline's phases, per K, on one step of the built-in drape_fold scene
 // (the step with the most candidates of the default run). Run: build/bin/ccdlab_microbench
-//   --benchmark_filter=Traverse   (or SweptBv, Refit, Step, FloatTester, Tester)
+//   --benchmark_filter=Traverse   (or TraverseWidth, SweptBv, Refit, Step, FloatTester, Tester)
 // Google Benchmark interleaves nothing by itself: compare ratios within one invocation.
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
+#include <optional>
 #include <random>
+#include <sstream>
+#include <string>
 
 #include "framework/traversal/bvtt.hpp"
+#include "framework/scene/mesh_sequence.hpp"
 #include "strategies/registry.hpp"
 #include "strategies/scenes/drape_fold_scene.hpp"
 #include "framework/queries/hard_cases.hpp"
@@ -56,14 +61,9 @@ void BM_SweptBv(benchmark::State& state) {
 }
 BENCHMARK(BM_SweptBv)->Arg(6)->Arg(14)->Arg(18)->Arg(26)->Unit(benchmark::kMillisecond);
 
-void BM_Traverse(benchmark::State& state) {
-  auto p = make_pipeline(int(state.range(0)));
-  const Fixture& f = fixture();
-  (void)p->step(f.x0, f.x1);  // builds and refits
+/// Times the sequential scheduler on `pass` (its volumes refit already): BV tests, candidates, ns per BV test.
+void time_sequential_traversal(benchmark::State& state, const TraversalPass& pass) {
   auto scheduler = scheduler_registry().make({"sequential", {}});
-  const BvhTopology& bvh = p->bvh(0);
-  const AnyBvs& node_bvs = p->node_bvs(0);
-  TraversalPass pass{0, &p->mesh(), &bvh, &node_bvs, &bvh, &node_bvs, true, 1};
   std::vector<PhaseTrace> traces;
   TraversalOutput out;
   for (auto _ : state) {
@@ -76,7 +76,44 @@ void BM_Traverse(benchmark::State& state) {
   state.counters["ns_per_bv_test"] = benchmark::Counter(double(out.bv_tests) * double(state.iterations()),
                                                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
+
+void BM_Traverse(benchmark::State& state) {
+  auto p = make_pipeline(int(state.range(0)));
+  const Fixture& f = fixture();
+  (void)p->step(f.x0, f.x1);  // builds and refits
+  const BvhTopology& bvh = p->bvh(0);
+  const AnyBvs& node_bvs = p->node_bvs(0);
+  time_sequential_traversal(state, TraversalPass{0, &p->mesh(), &bvh, &node_bvs, &bvh, &node_bvs, true, 1});
+}
 BENCHMARK(BM_Traverse)->Arg(6)->Arg(14)->Arg(18)->Arg(26)->Unit(benchmark::kMillisecond);
+
+// The traversal alone at BVH width 2 (binary) and 4 (wide view), K = 18, on the built-in step or, when
+// CCDLAB_BENCH_STEP="a.ply b.ply" is set, on that real step (e.g. ../shared/data/meshes/rod-twist/3036.ply and
+// 3037.ply). One thread, memory already touched: what a BV test costs without the step's page faults. Run with
+// --benchmark_repetitions and compare ns_per_bv_test of the two widths within one invocation.
+void BM_TraverseWidth(benchmark::State& state) {
+  const int width = int(state.range(0));
+  std::optional<MeshSequence> step_files;
+  const MeshSequence* scene = &fixture().scene;
+  Positions x0 = fixture().x0, x1 = fixture().x1;
+  if (const char* files = std::getenv("CCDLAB_BENCH_STEP")) {
+    std::istringstream in(files);
+    std::string a, b;
+    in >> a >> b;
+    scene = &step_files.emplace(load_frame_files({a, b}));
+    x0 = scene->frame(0), x1 = scene->frame(1);
+  }
+  PipelineStrategies s;
+  s.k = 18;
+  s.width = width;
+  s.builder = builder_registry().make({"median", {}});
+  s.scheduler = scheduler_registry().make({"sequential", {}});
+  s.tester = tester_registry().make({"float", tester_registry().find("float")->defaults()});
+  CcdPipeline p(scene->topology(), scene->bodies(), std::move(s));
+  (void)p.step(x0, x1);  // builds and refits both views
+  time_sequential_traversal(state, p.passes().front());
+}
+BENCHMARK(BM_TraverseWidth)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
 
 void BM_FloatTesterEdgeEdge(benchmark::State& state) {
   std::mt19937 rng(1);

@@ -131,6 +131,22 @@ WideLayout WideLayout::of(const BvhTopology& bvh) {
     }
     w.lanes.push_back(l);
   }
+  if (bvh.size() > 0) {
+    Lanes top;
+    top.node.fill(-1);
+    top.slot.fill(-1);
+    top.node[0] = 0;
+    if (!bvh.nodes[0].is_leaf()) top.node[1] = bvh.nodes[0].left, top.node[2] = bvh.nodes[0].right;
+    for (int j = 0; j < kWidth; ++j)
+      if (top.node[j] >= 0) top.slot[j] = w.slot[top.node[j]];
+    w.lanes.push_back(top);
+  }
+  w.home.assign(bvh.nodes.size(), -1);
+  for (Index r = 0; r < Index(w.lanes.size()); ++r)
+    for (int j = 0; j < kWidth; ++j) {
+      const Index c = w.lanes[r].node[j];
+      if (c >= 0 && w.home[c] < 0) w.home[c] = r * kWidth + j;
+    }
   return w;
 }
 

@@ -20,9 +20,8 @@
 
 namespace ccdlab {
 
-/// bv.width when a config does not say: binary. The 4-wide view pays only on large trees whose volumes miss the
-/// cache (n-body 146K triangles, 1 thread: traversal −21%, step −3%) and costs a second refit and ~300 bytes per triangle;
-/// on 18K–80K-triangle steps it is even (docs/wide-bvh.md).
+/// bv.width when a config does not say: binary. The 4-wide walk makes 9–16% fewer BV tests, but each costs more
+/// than a binary one (rod-twist 14.7 against 11.6 ns, n-body 16.6 against 9.9, one thread; docs/wide-bvh.md).
 inline constexpr int kDefaultBvhWidth = 2;
 
 struct WideLayout {
@@ -35,30 +34,50 @@ struct WideLayout {
   };
   std::uint64_t version = ~0ull;  ///< the topology version it was cut from
   std::vector<Index> slot;        ///< per node: its wide node, or ~face (< 0) for a leaf
-  std::vector<Lanes> lanes;       ///< per wide node: the grandchildren (a leaf child stands for itself)
+  /// Per wide node: the grandchildren (a leaf child stands for itself). One more record follows the inner
+  /// nodes' (index `top()`): the root and its children, never opened, so that every node is some record's lane.
+  std::vector<Lanes> lanes;
+  /// Per node: a lane that holds it, as record · kWidth + lane. A traversal reads a node's k-DOP there, in a
+  /// record it has just opened, instead of in the binary array (where the wide walk's reads missed the cache).
+  std::vector<Index> home;
 
   /// Cuts the layout of `bvh` (every inner node gets a slot, in node order).
   static WideLayout of(const BvhTopology& bvh);
+  /// The record of the root and its children (lanes.size() − 1); only their homes point into it.
+  [[nodiscard]] Index top() const { return Index(lanes.size()) - 1; }
   [[nodiscard]] std::size_t memory_bytes() const {
-    return slot.size() * sizeof(Index) + lanes.size() * sizeof(Lanes);
+    return (slot.size() + home.size()) * sizeof(Index) + lanes.size() * sizeof(Lanes);
   }
 };
 
-/// The lanes' bounds of one wide node: lo[axis][lane], hi[axis][lane].
+/// One wide node as a traversal reads it: the lanes' bounds, lo[axis][lane] and hi[axis][lane], followed by a copy
+/// of their Lanes (node ids and slots), so that a visit touches one contiguous record (320 bytes at K = 18, five
+/// cache lines) besides the other side's k-DOP.
 template <class BV>
-struct alignas(16) WideBounds {
+struct alignas(64) WideBounds {
   using Volume = BV;
   static constexpr int kAxes = BV::num_axes;
   float lo[kAxes][WideLayout::kWidth];
   float hi[kAxes][WideLayout::kWidth];
+  WideLayout::Lanes lanes;
+};
+
+/// Lane j of a record, read as a k-DOP: the other side of a wide visit (overlapping_lanes' query).
+template <class BV>
+struct WideLane {
+  const WideBounds<BV>* record;
+  int j;
+  [[nodiscard]] float min(int i) const { return record->lo[i][j]; }
+  [[nodiscard]] float max(int i) const { return record->hi[i][j]; }
 };
 
 template <class BV>
-using WideBvs = std::vector<WideBounds<BV>>;
+using WideBvs = UnconstructedVector<WideBounds<BV>>;  // large: in huge pages, not value-initialized
 
-/// Copies the binary volumes of wide node w's lanes into its bounds (after the binary refit).
+/// Copies the binary volumes of wide node w's lanes into its bounds (after the binary refit), and its lanes.
 template <class BV>
 void refit_wide_node(const WideLayout& layout, const BvArray<BV>& bvs, Index w, WideBounds<BV>& out) {
+  out.lanes = layout.lanes[w];
   for (int j = 0; j < WideLayout::kWidth; ++j) {
     const Index c = layout.lanes[w].node[j];
     for (int i = 0; i < BV::num_axes; ++i) {

@@ -12,8 +12,9 @@
 namespace ccdlab {
 
 /// Bit j set ⇔ lane j's k-DOP overlaps q (closed intervals on every axis, as KDop::overlaps). Empty lanes never do.
-template <class BV>
-inline unsigned overlapping_lanes_plain(const WideBounds<BV>& w, const BV& q) {
+/// q: a BV or a WideLane<BV> (anything with min(i), max(i)).
+template <class BV, class Query>
+inline unsigned overlapping_lanes_plain(const WideBounds<BV>& w, const Query& q) {
   unsigned mask = 0;
   for (int j = 0; j < WideLayout::kWidth; ++j) {
     bool apart = false;
@@ -33,8 +34,8 @@ inline void lane_sizes_plain(const WideBounds<BV>& w, float* out) {
 #if defined(__SSE2__)
 static_assert(WideLayout::kWidth == 4, "one SSE2 register per axis and side");
 
-template <class BV>
-inline unsigned overlapping_lanes(const WideBounds<BV>& w, const BV& q) {
+template <class BV, class Query>
+inline unsigned overlapping_lanes(const WideBounds<BV>& w, const Query& q) {
   __m128 apart = _mm_setzero_ps();
   for (int i = 0; i < BV::num_axes; ++i) {
     apart = _mm_or_ps(apart, _mm_cmpgt_ps(_mm_load_ps(w.lo[i]), _mm_set1_ps(q.max(i))));
@@ -49,8 +50,8 @@ inline void lane_sizes(const WideBounds<BV>& w, float* out) {
   _mm_storeu_ps(out, _mm_add_ps(_mm_add_ps(extent(0), extent(1)), extent(2)));
 }
 #else
-template <class BV>
-inline unsigned overlapping_lanes(const WideBounds<BV>& w, const BV& q) {
+template <class BV, class Query>
+inline unsigned overlapping_lanes(const WideBounds<BV>& w, const Query& q) {
   return overlapping_lanes_plain(w, q);
 }
 template <class BV>

@@ -57,8 +57,36 @@ TEST(WideBvh, LanesAreTheGrandchildren) {
     }
     ++inner;
   }
-  EXPECT_EQ(inner, w.lanes.size());
+  ASSERT_EQ(inner + 1, w.lanes.size()) << "one record per inner node, then the top record";
+  const WideLayout::Lanes& top = w.lanes[std::size_t(w.top())];
+  EXPECT_EQ(top.node[0], 0);
+  EXPECT_EQ(top.node[1], bvh.nodes[0].left);
+  EXPECT_EQ(top.node[2], bvh.nodes[0].right);
+  EXPECT_EQ(top.node[3], -1);
+  // Every node has a home: a lane that holds it, and the lane's slot is the node's.
+  ASSERT_EQ(w.home.size(), bvh.nodes.size());
+  for (Index i = 0; i < bvh.size(); ++i) {
+    const Index h = w.home[std::size_t(i)];
+    ASSERT_GE(h, 0) << "node " << i << " has no home";
+    const WideLayout::Lanes& l = w.lanes[std::size_t(h / 4)];
+    EXPECT_EQ(l.node[std::size_t(h % 4)], i);
+    EXPECT_EQ(l.slot[std::size_t(h % 4)], w.slot[std::size_t(i)]);
+  }
   EXPECT_GT(with_leaf_child, 0u) << "the tree must exercise leaf children standing for themselves";
+}
+
+TEST(WideBvh, ASingleLeafTreeHasATopRecord) {
+  std::vector<Box3> boxes;
+  const BvhTopology bvh = grid_bvh(1, 1, boxes);  // two faces: a root and two leaves
+  const WideLayout w = WideLayout::of(bvh);
+  ASSERT_EQ(w.lanes.size(), 2u);
+  BvhTopology one = bvh;
+  one.nodes.resize(1);
+  one.nodes[0] = bvh.nodes[1];  // a leaf as the root
+  const WideLayout w1 = WideLayout::of(one);
+  ASSERT_EQ(w1.lanes.size(), 1u);
+  EXPECT_EQ(w1.home[0], 0);
+  EXPECT_EQ(w1.lanes[0].slot[0], ~bvh.nodes[1].face);
 }
 
 template <int K>
@@ -86,6 +114,15 @@ void check_lane_test(std::mt19937& rng) {
     const BV q = trial % 4 == 0 ? lane[0] : random_dop();
     const unsigned mask = overlapping_lanes(w, q);
     EXPECT_EQ(mask, overlapping_lanes_plain(w, q)) << "SIMD and plain lane tests differ";
+    // The same query read from a lane of another record (how the wide walk reads the other side).
+    WideBounds<BV> holder;
+    const int qj = trial % 4;
+    for (int i = 0; i < BV::num_axes; ++i)
+      for (int j = 0; j < 4; ++j) {
+        holder.lo[i][j] = j == qj ? q.min(i) : std::numeric_limits<float>::quiet_NaN();
+        holder.hi[i][j] = j == qj ? q.max(i) : std::numeric_limits<float>::quiet_NaN();
+      }
+    EXPECT_EQ(overlapping_lanes(w, WideLane<BV>{&holder, qj}), mask) << "a lane as the query";
     for (int j = 0; j < 4; ++j) {
       const bool expected = j < used && lane[j].overlaps(q);
       EXPECT_EQ(bool(mask >> j & 1u), expected) << "K=" << K << " trial " << trial << " lane " << j;
