@@ -175,10 +175,11 @@ struct BvttStack {
 /// the lanes that overlap the other side are pushed (test before push). Self nodes still open into (L, L),
 /// (R, R), (L, R) as in the binary BVTT, so normal-cone skips apply unchanged. The descent rule is the binary
 /// one (the larger side by size_measure, never a leaf); the candidates are the same (see wide_bvh.hpp).
-/// Written like the binary walk (raw pointers, the first hit lane visited without going through the stack,
-/// candidates written in place). A pair visit reads the record it opens and the other side's k-DOP from the
-/// lane that holds it, in a record opened a moment ago: reading it from the binary array instead missed the
-/// cache (17% of the walk's samples, rod-twist).
+/// Written like the binary walk (raw pointers, candidates written in place). A pair visit reads the record it
+/// opens and the other side's k-DOP from the lane that holds it, in a record opened a moment ago: reading it
+/// from the binary array instead missed the cache (17% of the walk's samples, rod-twist). A hit lane whose own
+/// visit would open the other side's record (the usual case: a lane is two levels smaller) is not pushed: that
+/// test is made at once, while both records are in cache. Same BV tests as pushing it, in another order.
 template <class BV>
 void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideBvttEntry>& stack, FacePairs& pairs,
                         std::uint64_t& bv_tests_out) {
@@ -198,11 +199,11 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
   const auto pair_entry = [&](Index a, Index b) {
     return WideBvttEntry{home_a[a], home_b[b], slot_a[a], slot_b[b], bva[a].size_measure(), bvb[b].size_measure()};
   };
-  // A visit pushes at most W − 1 lanes, or 2 entries for a self node; room for W is checked before each visit.
-  if (stack.size() < 16) stack.resize(16);
+  // A visit pushes at most W · W pair nodes, or 2 entries for a self node; room is checked before each visit.
+  if (stack.size() < 64) stack.resize(64);
   WideBvttEntry* base = stack.data();
   WideBvttEntry* top = base;
-  WideBvttEntry* room = base + stack.size() - W;
+  WideBvttEntry* room = base + stack.size() - W * W;
   std::size_t emitted = pairs.size();
   pairs.resize(std::max<std::size_t>(pairs.capacity(), emitted + 1024));
   FacePair* pout = pairs.data() + emitted;
@@ -222,7 +223,7 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
         stack.resize(2 * stack.size());
         base = stack.data();
         top = base + used;
-        room = base + stack.size() - W;
+        room = base + stack.size() - W * W;
       }
       if (self && n.ha == n.hb) {
         const BvhNode& A = na[n.ha];
@@ -243,35 +244,60 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
         pout = v.write_face_pair(pout, ~n.wa, ~n.wb);
       } else {
         const bool down_a = n.wb < 0 || (n.wa >= 0 && n.sa >= n.sb);  // the binary rule: the larger, never a leaf
-        const WideBounds<BV>& bounds = down_a ? wide_a[n.wa] : wide_b[n.wb];
+        const auto side_of = [&](bool a_side) { return a_side ? wide_a : wide_b; };
+        const Index rx = down_a ? n.wa : n.wb;  // the record opened
+        const WideBounds<BV>& bx = side_of(down_a)[rx];
         const Index h = down_a ? n.hb : n.ha;  // the other side's home
-        unsigned hit = overlapping_lanes(bounds, WideLane<BV>{(down_a ? wide_b : wide_a) + h / W, h % W});
-        const WideLayout::Lanes& lanes = bounds.lanes;
-        bv_tests += W - (lanes.node[W - 1] < 0) - (lanes.node[W - 2] < 0);
+        unsigned hit = overlapping_lanes(bx, WideLane<BV>{side_of(!down_a) + h / W, h % W});
+        bv_tests += W - (bx.lanes.node[W - 1] < 0) - (bx.lanes.node[W - 2] < 0);
         if (hit) {
-          lane_sizes(bounds, size);
-          const Index record = Index(&bounds - (down_a ? wide_a : wide_b));
-          // Every hit lane but the first is pushed; the first is visited next.
-          const auto child = [&](int j) {
-            WideBvttEntry c = n;
-            if (down_a) {
-              c.ha = record * W + j, c.wa = lanes.slot[j], c.sa = size[j];
+          lane_sizes(bx, size);
+          const Index ry = down_a ? n.wb : n.wa;  // the other side's record, if it is inner
+          alignas(16) float size_y[W];
+          bool sized_y = false;
+          const auto lane_child = [](WideBvttEntry c, bool a_side, Index record, const WideBounds<BV>& b,
+                                     const float* sz, int j) {
+            if (a_side) {
+              c.ha = record * W + j, c.wa = b.lanes.slot[j], c.sa = sz[j];
             } else {
-              c.hb = record * W + j, c.wb = lanes.slot[j], c.sb = size[j];
-            }
-            // Ask for the record its visit will open, now: the visits of the lanes pushed here come later (the
-            // first one's at once), and their fetches overlap.
-            const bool next_a = c.wb < 0 || (c.wa >= 0 && c.sa >= c.sb);
-            if ((c.wa & c.wb) >= 0 || (c.wa ^ c.wb) < 0) {
-              const char* r = reinterpret_cast<const char*>(next_a ? wide_a + c.wa : wide_b + c.wb);
-              for (std::size_t line = 0; line < sizeof(WideBounds<BV>); line += 64) __builtin_prefetch(r + line);
+              c.hb = record * W + j, c.wb = b.lanes.slot[j], c.sb = sz[j];
             }
             return c;
           };
-          const int first = std::countr_zero(hit);
-          for (hit &= hit - 1; hit; hit &= hit - 1) *top++ = child(std::countr_zero(hit));
-          n = child(first);
-          continue;
+          // A pair node found to overlap: emitted if both are leaves, else pushed, its next record asked for.
+          const auto settle = [&](const WideBvttEntry& c) {
+            if ((c.wa & c.wb) < 0) {
+              if (pout == pend) [[unlikely]] {
+                emitted = std::size_t(pout - pairs.data());
+                pairs.resize(2 * pairs.size());
+                pout = pairs.data() + emitted;
+                pend = pairs.data() + pairs.size();
+              }
+              pout = v.write_face_pair(pout, ~c.wa, ~c.wb);
+              return;
+            }
+            const bool next_a = c.wb < 0 || (c.wa >= 0 && c.sa >= c.sb);
+            const char* r = reinterpret_cast<const char*>(next_a ? wide_a + c.wa : wide_b + c.wb);
+            for (std::size_t line = 0; line < sizeof(WideBounds<BV>); line += 64) __builtin_prefetch(r + line);
+            *top++ = c;
+          };
+          for (; hit; hit &= hit - 1) {
+            const int j = std::countr_zero(hit);
+            const WideBvttEntry c = lane_child(n, down_a, rx, bx, size, j);
+            // The visit of c would open the other side's record with lane j as its query (the binary rule):
+            // make that test now, while both records are in cache, instead of pushing c.
+            const bool opens_y =
+                down_a ? (c.wb >= 0 && !(c.wa >= 0 && c.sa >= c.sb)) : (c.wb < 0 || c.sa >= c.sb) && c.wa >= 0;
+            if (!opens_y) {
+              settle(c);
+              continue;
+            }
+            const WideBounds<BV>& by = side_of(!down_a)[ry];
+            unsigned hit_y = overlapping_lanes(by, WideLane<BV>{&bx, j});
+            bv_tests += W - (by.lanes.node[W - 1] < 0) - (by.lanes.node[W - 2] < 0);
+            if (hit_y && !sized_y) lane_sizes(by, size_y), sized_y = true;
+            for (; hit_y; hit_y &= hit_y - 1) settle(lane_child(c, !down_a, ry, by, size_y, std::countr_zero(hit_y)));
+          }
         }
       }
     }
