@@ -215,6 +215,15 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
     visit = bva[start.a].overlaps(bvb[start.b]);
     if (visit) n = pair_entry(start.a, start.b);
   }
+  const auto emit = [&](const WideBvttEntry& leaves) {  // the candidate of two overlapping leaves
+    if (pout == pend) [[unlikely]] {
+      emitted = std::size_t(pout - pairs.data());
+      pairs.resize(2 * pairs.size());
+      pout = pairs.data() + emitted;
+      pend = pairs.data() + pairs.size();
+    }
+    pout = v.write_face_pair(pout, ~leaves.wa, ~leaves.wb);
+  };
   alignas(16) float size[W];
   for (;;) {
     if (visit) {
@@ -235,13 +244,7 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
           continue;
         }
       } else if ((n.wa & n.wb) < 0) {  // both leaves (slots ~face)
-        if (pout == pend) [[unlikely]] {
-          emitted = std::size_t(pout - pairs.data());
-          pairs.resize(2 * pairs.size());
-          pout = pairs.data() + emitted;
-          pend = pairs.data() + pairs.size();
-        }
-        pout = v.write_face_pair(pout, ~n.wa, ~n.wb);
+        emit(n);
       } else {
         const bool down_a = n.wb < 0 || (n.wa >= 0 && n.sa >= n.sb);  // the binary rule: the larger, never a leaf
         const auto side_of = [&](bool a_side) { return a_side ? wide_a : wide_b; };
@@ -267,13 +270,7 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
           // A pair node found to overlap: emitted if both are leaves, else pushed, its next record asked for.
           const auto settle = [&](const WideBvttEntry& c) {
             if ((c.wa & c.wb) < 0) {
-              if (pout == pend) [[unlikely]] {
-                emitted = std::size_t(pout - pairs.data());
-                pairs.resize(2 * pairs.size());
-                pout = pairs.data() + emitted;
-                pend = pairs.data() + pairs.size();
-              }
-              pout = v.write_face_pair(pout, ~c.wa, ~c.wb);
+              emit(c);
               return;
             }
             const bool next_a = c.wb < 0 || (c.wa >= 0 && c.sa >= c.sb);
