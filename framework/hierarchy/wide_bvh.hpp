@@ -21,7 +21,8 @@
 namespace ccdlab {
 
 /// bv.width when a config does not say: binary. The 4-wide walk makes 9–16% fewer BV tests, but each costs more
-/// than a binary one (rod-twist 14.7 against 11.6 ns, n-body 16.6 against 9.9, one thread; docs/wide-bvh.md).
+/// than a binary one: alone, it is as fast as the binary walk on rod-twist and 1.3× slower on n-body; inside a
+/// step, where the narrow phase evicts its records between tasks, slower on both (docs/wide-bvh.md).
 inline constexpr int kDefaultBvhWidth = 2;
 
 struct WideLayout {
