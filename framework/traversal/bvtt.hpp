@@ -163,7 +163,17 @@ struct WideBvttEntry {
   Index ha, hb;
   Index wa, wb;
   float sa, sb;
+  [[nodiscard]] bool both_leaves() const { return (wa & wb) < 0; }  // slots ~face
+  /// The descent rule of a pair node (the binary one): open a's record — the larger side, never a leaf.
+  [[nodiscard]] bool descends_a() const { return wb < 0 || (wa >= 0 && sa >= sb); }
 };
+
+/// Lanes of a record that hold a node (BV tests when it is opened): 2, 3 or 4, the empty ones last.
+template <class BV>
+int used_lanes(const WideBounds<BV>& r) {
+  constexpr int W = WideLayout::kWidth;
+  return W - (r.lanes.node[W - 1] < 0) - (r.lanes.node[W - 2] < 0);
+}
 
 /// Scratch space of one traversal (one per thread): the binary and the wide walk keep different stacks.
 struct BvttStack {
@@ -243,16 +253,16 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
           n = {A.left, A.left, -1, -1, 0, 0};
           continue;
         }
-      } else if ((n.wa & n.wb) < 0) {  // both leaves (slots ~face)
+      } else if (n.both_leaves()) {
         emit(n);
       } else {
-        const bool down_a = n.wb < 0 || (n.wa >= 0 && n.sa >= n.sb);  // the binary rule: the larger, never a leaf
+        const bool down_a = n.descends_a();
         const auto side_of = [&](bool a_side) { return a_side ? wide_a : wide_b; };
         const Index rx = down_a ? n.wa : n.wb;  // the record opened
         const WideBounds<BV>& bx = side_of(down_a)[rx];
         const Index h = down_a ? n.hb : n.ha;  // the other side's home
         unsigned hit = overlapping_lanes(bx, WideLane<BV>{side_of(!down_a) + h / W, h % W});
-        bv_tests += W - (bx.lanes.node[W - 1] < 0) - (bx.lanes.node[W - 2] < 0);
+        bv_tests += used_lanes(bx);
         if (hit) {
           lane_sizes(bx, size);
           const Index ry = down_a ? n.wb : n.wa;  // the other side's record, if it is inner
@@ -269,12 +279,11 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
           };
           // A pair node found to overlap: emitted if both are leaves, else pushed, its next record asked for.
           const auto settle = [&](const WideBvttEntry& c) {
-            if ((c.wa & c.wb) < 0) {
+            if (c.both_leaves()) {
               emit(c);
               return;
             }
-            const bool next_a = c.wb < 0 || (c.wa >= 0 && c.sa >= c.sb);
-            const char* r = reinterpret_cast<const char*>(next_a ? wide_a + c.wa : wide_b + c.wb);
+            const char* r = reinterpret_cast<const char*>(c.descends_a() ? wide_a + c.wa : wide_b + c.wb);
             for (std::size_t line = 0; line < sizeof(WideBounds<BV>); line += 64) __builtin_prefetch(r + line);
             *top++ = c;
           };
@@ -283,15 +292,13 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
             const WideBvttEntry c = lane_child(n, down_a, rx, bx, size, j);
             // The visit of c would open the other side's record with lane j as its query (the binary rule):
             // make that test now, while both records are in cache, instead of pushing c.
-            const bool opens_y =
-                down_a ? (c.wb >= 0 && !(c.wa >= 0 && c.sa >= c.sb)) : (c.wb < 0 || c.sa >= c.sb) && c.wa >= 0;
-            if (!opens_y) {
+            if (c.both_leaves() || c.descends_a() == down_a) {
               settle(c);
               continue;
             }
             const WideBounds<BV>& by = side_of(!down_a)[ry];
             unsigned hit_y = overlapping_lanes(by, WideLane<BV>{&bx, j});
-            bv_tests += W - (by.lanes.node[W - 1] < 0) - (by.lanes.node[W - 2] < 0);
+            bv_tests += used_lanes(by);
             if (hit_y && !sized_y) lane_sizes(by, size_y), sized_y = true;
             for (; hit_y; hit_y &= hit_y - 1) settle(lane_child(c, !down_a, ry, by, size_y, std::countr_zero(hit_y)));
           }
