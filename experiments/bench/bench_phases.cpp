@@ -91,18 +91,27 @@ BENCHMARK(BM_Traverse)->Arg(6)->Arg(14)->Arg(18)->Arg(26)->Unit(benchmark::kMill
 // CCDLAB_BENCH_STEP="a.ply b.ply" is set, on that real step (e.g. ../shared/data/meshes/rod-twist/3036.ply and
 // 3037.ply). One thread, memory already touched: what a BV test costs without the step's page faults. Run with
 // --benchmark_repetitions and compare ns_per_bv_test of the two widths within one invocation.
-void BM_TraverseWidth(benchmark::State& state) {
-  const int width = int(state.range(0));
-  std::optional<MeshSequence> step_files;
+/// The step to time: the built-in one, or the two files named by CCDLAB_BENCH_STEP="a.ply b.ply".
+struct BenchStep {
+  std::optional<MeshSequence> files;
   const MeshSequence* scene = &fixture().scene;
   Positions x0 = fixture().x0, x1 = fixture().x1;
-  if (const char* files = std::getenv("CCDLAB_BENCH_STEP")) {
-    std::istringstream in(files);
-    std::string a, b;
-    in >> a >> b;
-    scene = &step_files.emplace(load_frame_files({a, b}));
-    x0 = scene->frame(0), x1 = scene->frame(1);
+  BenchStep() {
+    if (const char* names = std::getenv("CCDLAB_BENCH_STEP")) {
+      std::istringstream in(names);
+      std::string a, b;
+      in >> a >> b;
+      scene = &files.emplace(load_frame_files({a, b}));
+      x0 = scene->frame(0), x1 = scene->frame(1);
+    }
   }
+};
+
+void BM_TraverseWidth(benchmark::State& state) {
+  const int width = int(state.range(0));
+  const BenchStep step;
+  const MeshSequence* scene = step.scene;
+  const Positions &x0 = step.x0, &x1 = step.x1;
   PipelineStrategies s;
   s.k = 18;
   s.width = width;
@@ -114,6 +123,42 @@ void BM_TraverseWidth(benchmark::State& state) {
   time_sequential_traversal(state, p.passes().front());
 }
 BENCHMARK(BM_TraverseWidth)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
+
+// The narrow phase of a whole step repeated in one process (memory touched, as in a simulation's later steps):
+// ms per step of the candidates' narrow phase and the orphans', and of each stage (NarrowCounters), K = 18,
+// sequential, one thread; on CCDLAB_BENCH_STEP's step if set. For comparing two builds' narrow phases with less
+// noise than one-step runs; compare within one machine and period.
+void BM_NarrowStep(benchmark::State& state) {
+  const BenchStep step;
+  CcdPipeline p(step.scene->topology(), step.scene->bodies(), [] {
+    PipelineStrategies s;
+    s.k = 18;
+    s.builder = builder_registry().make({"median", {}});
+    s.scheduler = scheduler_registry().make({"sequential", {}});
+    s.tester = tester_registry().make({"float", tester_registry().find("float")->defaults()});
+    return s;
+  }());
+  (void)p.step(step.x0, step.x1);  // builds; first touch
+  StepTimings sum;
+  NarrowCounters stages;
+  for (auto _ : state) {
+    const StepResult r = p.step(step.x0, step.x1);
+    sum.narrow_ms += r.timings.narrow_ms, sum.orphan_ms += r.timings.orphan_ms;
+    stages += r.counters;
+  }
+  const double n = double(state.iterations());
+  state.counters["narrow_ms"] = sum.narrow_ms / n;
+  state.counters["orphans_ms"] = sum.orphan_ms / n;
+  state.counters["narrow_orphans_ms"] = (sum.narrow_ms + sum.orphan_ms) / n;
+  const auto per_step_ms = [n](std::uint64_t ns) { return double(ns) * 1e-6 / n; };
+  state.counters["gather_ms"] = per_step_ms(stages.gather_ns);
+  state.counters["kdop_ms"] = per_step_ms(stages.kdop_ns);
+  state.counters["plane_ms"] = per_step_ms(stages.plane_ns);
+  state.counters["split_ms"] = per_step_ms(stages.split_ns);
+  state.counters["proximity_ms"] = per_step_ms(stages.proximity_ns);
+  state.counters["test_ms"] = per_step_ms(stages.test_ns);
+}
+BENCHMARK(BM_NarrowStep)->Unit(benchmark::kMillisecond);
 
 void BM_FloatTesterEdgeEdge(benchmark::State& state) {
   std::mt19937 rng(1);

@@ -13,9 +13,12 @@ namespace ccdlab {
 struct FeatureBatch {
   UninitializedVector<VertexFacePair> vf;  // gather grows them by the most a chunk can append, then trims
   UninitializedVector<EdgeEdgePair> ee;
+  /// Set when the gather ran stage 1's coarse test already and counted the pairs (NarrowPhase::gather_orphans).
+  bool coarse_done = false;
   void clear() {
     vf.clear();
     ee.clear();
+    coarse_done = false;
   }
 };
 

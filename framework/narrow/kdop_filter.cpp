@@ -147,8 +147,35 @@ void QuantizeDops(const PaddedDop* in, CoarseDop* out, std::size_t n, const floa
 
 // Coarse: unions are lane-wise minima (of minima, and of negated maxima); separated where a saturating
 // min + neg_max of the other side is > 0 (CoarseDop).
+// With 512-bit vectors a whole CoarseDop is one vector [min | neg_max]: the union is one Min per vertex, and
+// both separation sums come from one saturating add of one side and the other's halves swapped.
+#if HWY_TARGET != HWY_SCALAR
+template <class D>
+hn::Vec<D> SwapHalves(D d, hn::Vec<D> v) {
+  return hn::ConcatLowerUpper(d, v, v);  // [neg_max | min]
+}
+constexpr bool kWholeDop = hn::MaxLanes(hn::CappedTag<std::int16_t, 2 * CoarseDop::kLanes>()) == 2 * CoarseDop::kLanes;
+#else
+template <class D>
+hn::Vec<D> SwapHalves(D, hn::Vec<D> v) {
+  return v;  // never called: one lane
+}
+constexpr bool kWholeDop = false;
+#endif
+
 void CoarseKeepVf(const CoarseDop* dops, const Face* faces, const VertexFacePair* pairs, std::size_t n,
                   std::uint8_t* keep) {
+  if constexpr (kWholeDop) {
+    const hn::CappedTag<std::int16_t, 2 * CoarseDop::kLanes> d;
+    const auto zero = hn::Zero(d);
+    const auto whole = [&](Index v) { return hn::Load(d, dops[v].min); };
+    for (std::size_t i = 0; i < n; ++i) {
+      const Face& f = faces[pairs[i].f];
+      const auto face = hn::Min(hn::Min(whole(f[0]), whole(f[1])), whole(f[2]));
+      keep[i] = hn::AllFalse(d, hn::Gt(hn::SaturatedAdd(whole(pairs[i].v), SwapHalves(d, face)), zero));
+    }
+    return;
+  }
   const hn::CappedTag<std::int16_t, CoarseDop::kLanes> d;
   const std::size_t N = hn::Lanes(d);
   const auto zero = hn::Zero(d);
@@ -169,6 +196,17 @@ void CoarseKeepVf(const CoarseDop* dops, const Face* faces, const VertexFacePair
 
 void CoarseKeepEe(const CoarseDop* dops, const Edge* edges, const EdgeEdgePair* pairs, std::size_t n,
                   std::uint8_t* keep) {
+  if constexpr (kWholeDop) {
+    const hn::CappedTag<std::int16_t, 2 * CoarseDop::kLanes> d;
+    const auto zero = hn::Zero(d);
+    const auto whole = [&](Index v) { return hn::Load(d, dops[v].min); };
+    for (std::size_t i = 0; i < n; ++i) {
+      const Edge &ea = edges[pairs[i].a], &eb = edges[pairs[i].b];
+      const auto a = hn::Min(whole(ea[0]), whole(ea[1])), b = hn::Min(whole(eb[0]), whole(eb[1]));
+      keep[i] = hn::AllFalse(d, hn::Gt(hn::SaturatedAdd(a, SwapHalves(d, b)), zero));
+    }
+    return;
+  }
   const hn::CappedTag<std::int16_t, CoarseDop::kLanes> d;
   const std::size_t N = hn::Lanes(d);
   const auto zero = hn::Zero(d);

@@ -36,6 +36,19 @@ void compact(Pairs& pairs, const std::uint8_t* keep) {
   pairs.resize(j);
 }
 
+/// Appends the pairs whose keep flag is set to `out`, in order (branch-free, as compact above).
+template <class Pair>
+void append_kept(std::span<const Pair> pairs, const std::uint8_t* keep, UninitializedVector<Pair>& out) {
+  std::size_t j = out.size();
+  out.resize(j + pairs.size());
+  Pair* dst = out.data();
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    dst[j] = pairs[i];
+    j += keep[i];
+  }
+  out.resize(j);
+}
+
 /// VF flags first, then EE.
 void compact(FeatureBatch& batch, const std::vector<std::uint8_t>& keep) {
   const std::size_t nvf = batch.vf.size();
@@ -63,6 +76,33 @@ void NarrowPhase::gather(std::span<const FacePair> candidates, FeatureBatch& bat
   reps_.append_pairs(candidates, batch.vf, batch.ee);
 }
 
+void NarrowPhase::gather_orphans(std::span<const VertexFacePair> vf, std::span<const EdgeEdgePair> ee,
+                                 FeatureBatch& batch, NarrowCounters& c) const {
+  if (options_.mode == NarrowMode::scalar) {  // stage 1 runs pair by pair in run()
+    batch.vf.insert(batch.vf.end(), vf.begin(), vf.end());
+    batch.ee.insert(batch.ee.end(), ee.begin(), ee.end());
+    return;
+  }
+  const auto t = Clock::now();
+  constexpr std::size_t kPiece = 1024;  // flags on the stack, in L1
+  std::uint8_t keep[kPiece];
+  for (std::size_t b = 0; b < vf.size(); b += kPiece) {
+    const auto piece = vf.subspan(b, std::min(kPiece, vf.size() - b));
+    bounds_.vf_keep_coarse(mesh_, piece, keep);
+    append_kept(piece, keep, batch.vf);
+  }
+  for (std::size_t b = 0; b < ee.size(); b += kPiece) {
+    const auto piece = ee.subspan(b, std::min(kPiece, ee.size() - b));
+    bounds_.ee_keep_coarse(mesh_, piece, keep);
+    append_kept(piece, keep, batch.ee);
+  }
+  c.vf_pairs += vf.size();
+  c.ee_pairs += ee.size();
+  c.kdop_culled += vf.size() + ee.size() - batch.vf.size() - batch.ee.size();
+  c.kdop_ns += ns_since(t);
+  batch.coarse_done = true;
+}
+
 VertexFaceQuery NarrowPhase::vf_query(Index v, Index f) const {
   const Face& t = mesh_.face(f);
   const Positions &x0 = *x_t0_, &x1 = *x_t1_;
@@ -77,8 +117,10 @@ EdgeEdgeQuery NarrowPhase::ee_query(Index a, Index b) const {
 
 void NarrowPhase::run(NarrowScratch& scratch, Contacts& out, NarrowCounters& c, bool cull) const {
   FeatureBatch& batch = scratch.batch;
-  c.vf_pairs += batch.vf.size();
-  c.ee_pairs += batch.ee.size();
+  if (!batch.coarse_done) {
+    c.vf_pairs += batch.vf.size();
+    c.ee_pairs += batch.ee.size();
+  }
   if (options_.mode == NarrowMode::scalar) {
     // One pair at a time: the 26-DOP test, then the tester.
     const auto t = Clock::now();
@@ -100,7 +142,7 @@ void NarrowPhase::run(NarrowScratch& scratch, Contacts& out, NarrowCounters& c, 
     return;
   }
   if (cull) {
-    cull_kdop(scratch, c, /*coarse=*/true);  // stage 1 on the 16-bit grid, every pair
+    if (!batch.coarse_done) cull_kdop(scratch, c, /*coarse=*/true);  // stage 1 on the 16-bit grid, every pair
     if (const auto reach = tester_.cull_reach()) {
       cull_plane(scratch, *reach, c);  // stages 2, 3 and 4
     }

@@ -50,6 +50,10 @@ class NarrowPhase {
 
   /// Appends the feature pairs the candidates represent to `batch`.
   void gather(std::span<const FacePair> candidates, FeatureBatch& batch) const;
+  /// Appends a piece of the orphan set to an empty `batch`. Batched mode runs stage 1's coarse test here, on the
+  /// set where it lies, and copies only the pairs it keeps (a tenth on rod-twist), counting them as run() would.
+  void gather_orphans(std::span<const VertexFacePair> vf, std::span<const EdgeEdgePair> ee, FeatureBatch& batch,
+                      NarrowCounters& c) const;
   /// Culls and tests the pairs of `batch` (consumed: it holds the survivors afterwards); appends contacts.
   /// `cull = false` skips the culling stages (brute-force references).
   void run(NarrowScratch& scratch, Contacts& out, NarrowCounters& c, bool cull = true) const;

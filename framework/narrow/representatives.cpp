@@ -36,7 +36,16 @@ void Representatives::append_pairs(std::span<const FacePair> candidates, Uniniti
   ee.resize(ee_begin + 9 * candidates.size());
   VertexFacePair* out_vf = vf.data() + vf_begin;
   EdgeEdgePair* out_ee = ee.data() + ee_begin;
-  for (const FacePair& p : candidates) {
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    const FacePair& p = candidates[k];
+    if (k + 12 < candidates.size()) {
+      const FacePair& q = candidates[k + 12];
+      __builtin_prefetch(&mesh_.face(q.a));
+      __builtin_prefetch(&mesh_.face(q.b));
+      __builtin_prefetch(&mesh_.face_edges(q.a));
+      __builtin_prefetch(&mesh_.face_edges(q.b));
+      __builtin_prefetch(&owners_.owned_mask[q.b]);
+    }
     const Face &ta = mesh_.face(p.a), &tb = mesh_.face(p.b);
     const auto &ea = mesh_.face_edges(p.a), &eb = mesh_.face_edges(p.b);
     const unsigned ma = owners_.owned_mask[p.a], mb = owners_.owned_mask[p.b];
