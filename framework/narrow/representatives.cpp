@@ -22,7 +22,7 @@ Index Representatives::face_of_edge(Index e) const {
 }
 
 void Representatives::append_pairs(std::span<const FacePair> candidates, UninitializedVector<VertexFacePair>& vf,
-                                   UninitializedVector<EdgeEdgePair>& ee) const {
+                                   UninitializedVector<EdgeEdgePair>& ee, bool simd) const {
   if (rule_ != RepresentativeRule::fixed) {
     for (const FacePair& p : candidates)
       for_each_pair(
@@ -32,10 +32,16 @@ void Representatives::append_pairs(std::span<const FacePair> candidates, Uniniti
   // for_each_pair's fixed rule without its branches: every slot is written, the end advances by the owner bit
   // (the bits are close to random, and a mispredicted push_back per pair cost more than the pair; perf, n-body).
   const std::size_t vf_begin = vf.size(), ee_begin = ee.size();
-  vf.resize(vf_begin + 6 * candidates.size());
-  ee.resize(ee_begin + 9 * candidates.size());
+  vf.resize(vf_begin + 6 * candidates.size() + 8);  // + 8: the SIMD version stores whole vectors
+  ee.resize(ee_begin + 9 * candidates.size() + 8);
   VertexFacePair* out_vf = vf.data() + vf_begin;
   EdgeEdgePair* out_ee = ee.data() + ee_begin;
+  if (std::size_t n_vf = 0, n_ee = 0;
+      simd && detail::gather_owned_simd(records_.data(), candidates, out_vf, out_ee, &n_vf, &n_ee)) {
+    vf.resize(vf_begin + n_vf);
+    ee.resize(ee_begin + n_ee);
+    return;
+  }
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     const FacePair& p = candidates[k];
     if (k + 12 < candidates.size()) {
@@ -57,7 +63,10 @@ void Representatives::append_pairs(std::span<const FacePair> candidates, Uniniti
     }
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
-        *out_ee = {std::min(ea[i], eb[j]), std::max(ea[i], eb[j])};
+        // min and max without a branch (g++ made some of them jumps, taken at random: perf, rod-twist). Ids are
+        // non-negative int32, so the difference cannot overflow; d = min(0, y − x).
+        const Index x = ea[i], y = eb[j], diff = y - x, d = diff & (diff >> 31);
+        *out_ee = {x + d, y - d};
         out_ee += (ma >> (3 + i)) & (mb >> (3 + j)) & 1u;
       }
   }

@@ -24,6 +24,24 @@
 namespace ccdlab {
 
 enum class RepresentativeRule { fixed, first_free };
+
+/// What the fixed rule's gather reads of a face, in one 32-byte line: its corners and edges (the mesh's order),
+/// its owner bits (Ownership::owned_mask) and its own id.
+struct alignas(32) GatherRecord {
+  Index corner[3];
+  Index edge[3];
+  std::int32_t owned_mask;
+  Index self;
+};
+static_assert(sizeof(GatherRecord) == 32);
+
+namespace detail {
+/// The fixed rule's gather in SIMD (gather_simd.cpp) on CPUs with 512-bit vectors: writes the pairs of
+/// append_pairs, in its order, and returns true; false on other CPUs (nothing written). Writes whole vectors:
+/// out_vf needs 6 slots per candidate + 8, out_ee 9 per candidate + 8.
+bool gather_owned_simd(const GatherRecord* rec, std::span<const FacePair> candidates, VertexFacePair* out_vf,
+                       EdgeEdgePair* out_ee, std::size_t* n_vf, std::size_t* n_ee);
+}  // namespace detail
 [[nodiscard]] std::string_view to_string(RepresentativeRule r);
 /// "fixed" | "first_free"; throws Error naming the valid values otherwise.
 [[nodiscard]] RepresentativeRule parse_representative_rule(std::string_view name);
@@ -42,8 +60,9 @@ class Representatives {
   [[nodiscard]] Index face_of_edge(Index e) const;
 
   /// Appends the feature pairs that the non-adjacent candidates represent, candidate by candidate.
+  /// `simd = false` runs the plain loop of the fixed rule even where the SIMD one could run (tests).
   void append_pairs(std::span<const FacePair> candidates, UninitializedVector<VertexFacePair>& vf,
-                    UninitializedVector<EdgeEdgePair>& ee) const;
+                    UninitializedVector<EdgeEdgePair>& ee, bool simd = true) const;
   /// The feature pairs that the non-adjacent candidate (fa, fb) represents (the reference append_pairs follows).
   template <class OnVf, class OnEe>
   void for_each_pair(Index fa, Index fb, OnVf&& on_vf, OnEe&& on_ee) const;
@@ -85,6 +104,7 @@ class Representatives {
   const TriMesh& mesh_;
   RepresentativeRule rule_;
   Ownership owners_;  ///< fixed rule only
+  std::vector<GatherRecord> records_;  ///< fixed rule only: per face, for the SIMD gather
   // first_free only: position of face f in vertex_faces(face(f)[j]) / edge_faces(face_edges(f)[j]), per corner
   // (3 per face), capped at 255 (only 0 matters).
   std::vector<std::uint8_t> corner_rank_;
@@ -98,6 +118,13 @@ Representatives::Representatives(const TriMesh& mesh, RepresentativeRule rule, P
   if (rule_ == RepresentativeRule::fixed) {
     owners_ = assign_owners(mesh);
     orphans_ = build_orphan_set(mesh, owners_, self_collision);
+    records_.resize(std::size_t(mesh.num_faces()));
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+      GatherRecord& r = records_[std::size_t(f)];
+      for (int j = 0; j < 3; ++j) r.corner[j] = mesh.face(f)[j], r.edge[j] = mesh.face_edges(f)[j];
+      r.owned_mask = owners_.owned_mask[std::size_t(f)];
+      r.self = f;
+    }
   } else {
     corner_rank_.assign(3 * std::size_t(mesh.num_faces()), 255);
     edge_rank_.assign(3 * std::size_t(mesh.num_faces()), 255);
