@@ -175,20 +175,8 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   if (n == 0) return;
   PlaneBatch& plane = scratch.plane;
   plane.resize(n);
-  const Positions &x0 = *x_t0_, &x1 = *x_t1_;
-  for (std::size_t i = 0; i < nvf; ++i) {
-    const Index v = batch.vf[i].v;
-    const Face& f = mesh_.face(batch.vf[i].f);
-    const Vec3 &p0 = x0[v], &a0 = x0[f[0]], &b0 = x0[f[1]], &c0 = x0[f[2]];
-    const Vec3 &p1 = x1[v], &a1 = x1[f[0]], &b1 = x1[f[1]], &c1 = x1[f[2]];
-    plane.set(i, p0 - a0, p1 - a1, b0 - a0, b1 - a1, c0 - a0, c1 - a1, a1 - a0);
-  }
-  for (std::size_t i = nvf; i < n; ++i) {
-    const Edge &ea = mesh_.edge(batch.ee[i - nvf].a), &eb = mesh_.edge(batch.ee[i - nvf].b);
-    const Vec3 &a0 = x0[ea[0]], &a1 = x0[ea[1]], &b0 = x0[eb[0]], &b1 = x0[eb[1]];
-    const Vec3 &a0e = x1[ea[0]], &a1e = x1[ea[1]], &b0e = x1[eb[0]], &b1e = x1[eb[1]];
-    plane.set(i, b0 - a0, b0e - a0e, a1 - a0, a1e - a0e, b1 - b0, b1e - b0e, a0e - a0);
-  }
+  stage_vf_rows(plane, 0, batch.vf, mesh_.faces().data(), x_t0_->data(), x_t1_->data());
+  stage_ee_rows(plane, nvf, batch.ee, mesh_.edges().data(), x_t0_->data(), x_t1_->data());
   scratch.keep.resize(n);
   plane_filter(plane, reach, scratch.keep.data());
   plane.compact(scratch.keep.data());

@@ -23,6 +23,90 @@ struct Cross {
   HWY_INLINE V dot(V xx, V xy, V xz) const { return hn::Add(hn::Add(hn::Mul(xx, x), hn::Mul(xy, y)), hn::Mul(xz, z)); }
 };
 
+// stage_vf_rows / stage_ee_rows (plane_filter.hpp). A row watches four points o, a, b, c (VF: f0, v, f1, f2;
+// EE: a0, b0, a1, b1): A = a − o, B = b − o, C = c − o (VF) or c − a (EE), D = o(t1) − o(t0).
+template <bool kVf>
+HWY_INLINE void RowPoints(const std::int32_t* pair, const std::int32_t* features, std::int32_t* p) {
+  if constexpr (kVf) {
+    const std::int32_t* f = features + 3 * std::ptrdiff_t(pair[1]);
+    p[0] = f[0], p[1] = pair[0], p[2] = f[1], p[3] = f[2];
+  } else {
+    const std::int32_t *ea = features + 2 * std::ptrdiff_t(pair[0]), *eb = features + 2 * std::ptrdiff_t(pair[1]);
+    p[0] = ea[0], p[1] = eb[0], p[2] = ea[1], p[3] = eb[1];
+  }
+}
+
+/// One row, plain: the expressions PlaneBatch::set is given (one subtraction per double).
+template <bool kVf>
+HWY_INLINE void StageRowPlain(const std::int32_t* p, const double* x0, const double* x1, double* const* col,
+                              std::size_t i) {
+  for (int j = 0; j < 3; ++j) {
+    auto at = [&](const double* x, int role) { return x[3 * std::ptrdiff_t(p[role]) + j]; };
+    col[PlaneBatch::A0x + j][i] = at(x0, 1) - at(x0, 0);
+    col[PlaneBatch::A1x + j][i] = at(x1, 1) - at(x1, 0);
+    col[PlaneBatch::B0x + j][i] = at(x0, 2) - at(x0, 0);
+    col[PlaneBatch::B1x + j][i] = at(x1, 2) - at(x1, 0);
+    col[PlaneBatch::C0x + j][i] = at(x0, 3) - at(x0, kVf ? 0 : 1);
+    col[PlaneBatch::C1x + j][i] = at(x1, 3) - at(x1, kVf ? 0 : 1);
+    col[PlaneBatch::Dx + j][i] = at(x1, 0) - at(x0, 0);
+  }
+}
+
+template <bool kVf>
+void StageRowsT(const std::int32_t* pairs, const std::int32_t* features, const double* x0, const double* x1,
+                std::size_t n, double* const* col) {
+  std::size_t i = 0;
+#if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
+  const hn::Full256<double> d4;
+  const hn::Full128<double> d2;
+  using V = hn::Vec<decltype(d4)>;
+  struct Xyz {
+    V x, y, z;
+  };
+  // Four points' coordinates as three vectors: (x, y) and (y, z) of each, two 128-bit loads inside the Vec3,
+  // then interleaved and joined.
+  const auto load = [&](const double* x, const std::int32_t (&id)[4][4], int role) {
+    hn::Vec<decltype(d2)> xy[4], yz[4];
+    for (int k = 0; k < 4; ++k) {
+      const double* p = x + 3 * std::ptrdiff_t(id[k][role]);
+      xy[k] = hn::LoadU(d2, p), yz[k] = hn::LoadU(d2, p + 1);
+    }
+    return Xyz{hn::Combine(d4, hn::InterleaveLower(d2, xy[2], xy[3]), hn::InterleaveLower(d2, xy[0], xy[1])),
+               hn::Combine(d4, hn::InterleaveUpper(d2, xy[2], xy[3]), hn::InterleaveUpper(d2, xy[0], xy[1])),
+               hn::Combine(d4, hn::InterleaveUpper(d2, yz[2], yz[3]), hn::InterleaveUpper(d2, yz[0], yz[1]))};
+  };
+  const auto store = [&](int c, const Xyz& p, const Xyz& q) {  // columns c, c + 1, c + 2 = p − q
+    hn::StoreU(hn::Sub(p.x, q.x), d4, col[c] + i);
+    hn::StoreU(hn::Sub(p.y, q.y), d4, col[c + 1] + i);
+    hn::StoreU(hn::Sub(p.z, q.z), d4, col[c + 2] + i);
+  };
+  for (; i + 4 <= n; i += 4) {
+    std::int32_t id[4][4];
+    for (int k = 0; k < 4; ++k) RowPoints<kVf>(pairs + 2 * (i + std::size_t(k)), features, id[k]);
+    const Xyz o0 = load(x0, id, 0), o1 = load(x1, id, 0), a0 = load(x0, id, 1), a1 = load(x1, id, 1);
+    store(PlaneBatch::A0x, a0, o0);
+    store(PlaneBatch::A1x, a1, o1);
+    store(PlaneBatch::Dx, o1, o0);
+    const Xyz b0 = load(x0, id, 2), b1 = load(x1, id, 2);
+    store(PlaneBatch::B0x, b0, o0);
+    store(PlaneBatch::B1x, b1, o1);
+    const Xyz c0 = load(x0, id, 3), c1 = load(x1, id, 3);
+    store(PlaneBatch::C0x, c0, kVf ? o0 : a0);
+    store(PlaneBatch::C1x, c1, kVf ? o1 : a1);
+  }
+#endif
+  for (; i < n; ++i) {
+    std::int32_t id[4];
+    RowPoints<kVf>(pairs + 2 * i, features, id);
+    StageRowPlain<kVf>(id, x0, x1, col, i);
+  }
+}
+void StageRows(const std::int32_t* pairs, const std::int32_t* features, const double* x0, const double* x1,
+               std::size_t n, double* const* col, bool vf) {
+  if (vf) StageRowsT<true>(pairs, features, x0, x1, n, col);
+  else StageRowsT<false>(pairs, features, x0, x1, n, col);
+}
+
 void PlaneFilter(const double* const* col, double* const* out, std::size_t n, double abs_reach, double rel_reach,
                  std::uint8_t* keep) {
   const hn::ScalableTag<double> d;
@@ -89,6 +173,30 @@ HWY_AFTER_NAMESPACE();
 namespace ccdlab {
 
 HWY_EXPORT(PlaneFilter);
+HWY_EXPORT(StageRows);
+
+namespace {
+void stage_rows(PlaneBatch& batch, std::size_t first, const std::int32_t* pairs, std::size_t n,
+                const std::int32_t* features, const Vec3* x_t0, const Vec3* x_t1, bool vf) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Face) == 3 * sizeof(std::int32_t) &&
+                    sizeof(Edge) == 2 * sizeof(std::int32_t) && sizeof(VertexFacePair) == 2 * sizeof(std::int32_t) &&
+                    sizeof(EdgeEdgePair) == 2 * sizeof(std::int32_t),
+                "StageRows reads coordinate j of point p at 3p + j, and ids as packed int32");
+  if (n == 0) return;
+  double* cols[PlaneBatch::kColumns];
+  for (int c = 0; c < PlaneBatch::kColumns; ++c) cols[c] = batch.column(c) + first;
+  HWY_DYNAMIC_DISPATCH(StageRows)(pairs, features, x_t0->data(), x_t1->data(), n, cols, vf);
+}
+}  // namespace
+
+void stage_vf_rows(PlaneBatch& batch, std::size_t first, std::span<const VertexFacePair> pairs, const Face* faces,
+                   const Vec3* x_t0, const Vec3* x_t1) {
+  stage_rows(batch, first, &pairs.data()->v, pairs.size(), faces->data(), x_t0, x_t1, true);
+}
+void stage_ee_rows(PlaneBatch& batch, std::size_t first, std::span<const EdgeEdgePair> pairs, const Edge* edges,
+                   const Vec3* x_t0, const Vec3* x_t1) {
+  stage_rows(batch, first, &pairs.data()->a, pairs.size(), edges->data(), x_t0, x_t1, false);
+}
 
 void PlaneBatch::resize(std::size_t n) {
   size_ = n;

@@ -277,6 +277,44 @@ struct AllFeaturePairs {
   }
 };
 
+TEST(PlaneFilter, SimdStagingWritesThePlainRowsOnEveryTarget) {
+  MeshData g = test::grid(9, 8);
+  TriMesh mesh(Index(g.positions.size()), g.faces);
+  std::mt19937 rng(8);
+  Positions x0 = test::crumple(g.positions, rng, 0.05), x1 = test::crumple(g.positions, rng, 0.05);
+  std::uniform_real_distribution<double> e(-3, 3);
+  for (Vec3& p : x1) p *= std::pow(10.0, e(rng));  // every scale, so that no two rows round alike by luck
+  AllFeaturePairs all(mesh);
+  std::shuffle(all.vf.begin(), all.vf.end(), rng);
+  std::shuffle(all.ee.begin(), all.ee.end(), rng);
+  const std::vector<VertexFacePair> vf(all.vf.begin(), all.vf.begin() + 1003);  // not a multiple of 4 or 8
+  const std::vector<EdgeEdgePair> ee(all.ee.begin(), all.ee.begin() + 1001);
+  // The rows as the narrow phase wrote them before it staged in SIMD: PlaneBatch::set, one pair at a time.
+  PlaneBatch expect;
+  expect.resize(vf.size() + ee.size());
+  for (std::size_t i = 0; i < vf.size(); ++i) {
+    const Face& f = mesh.face(vf[i].f);
+    const Index v = vf[i].v;
+    expect.set(i, x0[v] - x0[f[0]], x1[v] - x1[f[0]], x0[f[1]] - x0[f[0]], x1[f[1]] - x1[f[0]], x0[f[2]] - x0[f[0]],
+               x1[f[2]] - x1[f[0]], x1[f[0]] - x0[f[0]]);
+  }
+  for (std::size_t i = 0; i < ee.size(); ++i) {
+    const Edge &a = mesh.edge(ee[i].a), &b = mesh.edge(ee[i].b);
+    expect.set(vf.size() + i, x0[b[0]] - x0[a[0]], x1[b[0]] - x1[a[0]], x0[a[1]] - x0[a[0]], x1[a[1]] - x1[a[0]],
+               x0[b[1]] - x0[b[0]], x1[b[1]] - x1[b[0]], x1[a[0]] - x0[a[0]]);
+  }
+  for_each_simd_target([&](const char* target) {
+    PlaneBatch got;
+    got.resize(expect.size());
+    stage_vf_rows(got, 0, vf, mesh.faces().data(), x0.data(), x1.data());
+    stage_ee_rows(got, vf.size(), ee, mesh.edges().data(), x0.data(), x1.data());
+    stage_ee_rows(got, got.size(), {}, mesh.edges().data(), x0.data(), x1.data());  // no rows: writes nothing
+    for (int c = 0; c < PlaneBatch::kColumns; ++c)
+      for (std::size_t i = 0; i < expect.size() + PlaneBatch::kPad; ++i)  // the padding rows stay zero
+        ASSERT_EQ(got.column(c)[i], expect.column(c)[i]) << target << " column " << c << " row " << i;
+  });
+}
+
 TEST(FeatureBounds, SimdKeepAgreesWithThePlainVersionOnEveryTarget) {
   MeshData g = test::grid(12, 12);
   TriMesh mesh(Index(g.positions.size()), g.faces);
