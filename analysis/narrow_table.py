@@ -8,14 +8,22 @@ Runs `CLI step T0 T1 --json ARGS` for every real step of ../shared/data/meshes (
 alternating (A B, B A, ...), and prints one Markdown row per step and side with the medians: BV tests,
 elementary tests, tests per true contact, ms per phase, and ns per feature pair in the narrow phase
 (candidates' pairs and orphans together). Both sides must report the same contact hash (exit 1 otherwise).
+
+`--steady N` times the steady state instead, as in a simulation's later steps: each run is one process,
+`CLI run` of frames T0 T1 T0 T1 ... (N steps, every other one backwards: the same pairs and contacts), and
+its value is the median over steps 2..N (the first builds the hierarchy and touches the memory). The side
+arguments are then options of `run`, e.g. "--set scheduler=phc --set tester=filtered".
 """
 import argparse
+import csv
 import json
 import os
+import re
 import shlex
 import statistics
 import subprocess
 import sys
+import tempfile
 
 STEPS = [("cloth-funnel", "227.ply", "228.ply"),
          ("rod-twist", "3036.ply", "3037.ply"),
@@ -27,6 +35,30 @@ def run(cli, t0, t1, args):
     if out.returncode != 0:
         sys.exit(f"narrow_table: {cli} step {t0} failed: {out.stderr.strip()[-300:]}")
     return json.loads(out.stdout)
+
+
+def run_steady(cli, t0, t1, args, steps, threads):
+    """One `CLI run` of `steps` steps between t0 and t1 and back; the step record as `step --json` has it."""
+    with tempfile.TemporaryDirectory() as tmp:
+        frames = "\n".join(f"    - {os.path.abspath(t1 if i % 2 else t0)}" for i in range(steps + 1))
+        config = os.path.join(tmp, "steady.yaml")
+        with open(config, "w") as f:
+            f.write(f"name: steady\nscene:\n  frames:\n{frames}\nthreads: {threads}\noutput:\n  dir: {tmp}/out\n")
+        out = subprocess.run([cli, "run", config, "--no-progress"] + args, capture_output=True, text=True)
+        if out.returncode != 0:
+            sys.exit(f"narrow_table: {cli} run failed: {out.stderr.strip()[-300:]}")
+        with open(os.path.join(tmp, "out", "steps.csv")) as f:
+            rows = list(csv.DictReader(f))
+    later = rows[1:] or rows
+    triangles = re.search(r"\((\d+) triangles", out.stdout)
+    med = lambda key: statistics.median(float(r[key]) for r in later)
+    first = rows[0]
+    count = lambda key: int(first[key])
+    return {"triangles": int(triangles.group(1)) if triangles else 0,
+            "counters": {k: count(k) for k in ("bv_tests", "vf_pairs", "ee_pairs", "vf_tests", "ee_tests")},
+            "contacts": {"vf": count("contacts_vf"), "ee": count("contacts_ee")}, "hash": first["hash"],
+            "ms": {"narrow": med("narrow_ms"), "orphans": med("orphan_ms"), "total": med("total_ms"),
+                   "traverse": med("traverse_ms")}}
 
 
 def summary(runs):
@@ -53,10 +85,13 @@ def main():
     ap.add_argument("--b-args", default="", help="extra step arguments of side B")
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--steady", type=int, default=0, metavar="N",
+                    help="time N steps in one process each run (medians of steps 2..N) instead of one-step runs")
     ap.add_argument("--data", default=os.path.join(os.path.dirname(__file__), "..", "..", "shared", "data"))
     o = ap.parse_args()
     sides = {"A": (o.a, shlex.split(o.a_args)), "B": (o.b, shlex.split(o.b_args))}
-    print(f"threads {o.threads}, {o.rounds} alternating rounds, medians. A = `{o.a} {o.a_args}`, B = `{o.b} {o.b_args}`\n")
+    mode = f"steady state: {o.steady} steps a run, medians of steps 2..{o.steady}; " if o.steady else ""
+    print(f"threads {o.threads}, {mode}{o.rounds} alternating rounds, medians. A = `{o.a} {o.a_args}`, B = `{o.b} {o.b_args}`\n")
     print("| step | side | triangles | BV tests | feature pairs | elementary tests | tests / true contact | "
           "ms total | ms traverse | ms narrow + orphans | ns / feature pair | ns / test |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
@@ -71,7 +106,10 @@ def main():
         for i in range(o.rounds):
             for side in (["A", "B"] if i % 2 == 0 else ["B", "A"]):
                 cli, args = sides[side]
-                runs[side].append(run(cli, t0, t1, args + ["--threads", str(o.threads)]))
+                if o.steady:
+                    runs[side].append(run_steady(cli, t0, t1, args, o.steady, o.threads))
+                else:
+                    runs[side].append(run(cli, t0, t1, args + ["--threads", str(o.threads)]))
         rows = {side: summary(r) for side, r in runs.items()}
         if rows["A"]["hash"] != rows["B"]["hash"]:
             print(f"narrow_table: {scene}: contact hashes differ: {rows['A']['hash']} vs {rows['B']['hash']}", file=sys.stderr)
