@@ -80,7 +80,8 @@ std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std
   // One wide node per inner node (f − 1) and the top one: its lanes and bounds, plus a slot and a home per node.
   const std::uint64_t wide = width == 4 ? f * (sizeof(WideLayout::Lanes) + wide_bounds) + 4 * f * sizeof(Index) : 0;
   const std::uint64_t feature_boxes = v * FeatureBounds::kBytesPerVertex;
-  const std::uint64_t ownership = (v + e) * sizeof(Index) + f * (1 + sizeof(GatherRecord));  // owners, masks, records
+  const std::uint64_t records = std::max<std::uint64_t>(f * sizeof(GatherRecord), kLargeAllocation);  // one huge page at least
+  const std::uint64_t ownership = (v + e) * sizeof(Index) + f + records;  // owners, masks, the gather's records
   const std::uint64_t orphans = std::uint64_t(orphan_pairs) * sizeof(EdgeEdgePair);
   const std::uint64_t frames = 2 * v * sizeof(Vec3);
   return bvh + wide + feature_boxes + ownership + orphans + frames;
