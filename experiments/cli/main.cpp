@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <new>
 #include <string_view>
 
 #include "ccdlab/build_info.hpp"
 #include "experiments/cli/commands.hpp"
+#include "framework/narrow/plane_filter.hpp"
 #include "framework/util/error.hpp"
 
 namespace {
@@ -28,6 +30,13 @@ int user_error(std::string_view message) {
 int main(int argc, char** argv) {
   using namespace ccdlab::cli;
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // table rows reach a log or pipe as they are printed
+  if (const char* simd = std::getenv("CCDLAB_SIMD")) {  // e.g. CCDLAB_SIMD=avx2: what each SIMD target buys
+    try {
+      ccdlab::limit_simd_target(simd);
+    } catch (const ccdlab::Error& e) {
+      return user_error(e.what());
+    }
+  }
   CLI::App app{"ccdlab: continuous collision detection for deforming cloth"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("ccdlab ") + ccdlab::build_info::git_revision);

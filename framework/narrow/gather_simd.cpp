@@ -3,8 +3,9 @@
 // pairs (min and max by swapping neighbouring lanes), the owned ones first (the lanes each combination of owner
 // bits picks are tabled), each vector stored whole.
 // About 30 instructions a candidate against ~80 for the plain loop, which was bound by them (perf, rod-twist).
-// The same pairs in the same order as the plain loop (a test compares them on every target). Targets with
-// narrower vectors return false and the caller runs the plain loop.
+// AVX2 does the same with two 256-bit output vectors per kind, each lane permuted from either record and
+// blended. The same pairs in the same order as the plain loop (a test compares them on every target). Other
+// targets return false and the caller runs the plain loop.
 #include "framework/narrow/representatives.hpp"
 
 #undef HWY_TARGET_INCLUDE
@@ -87,6 +88,46 @@ bool GatherOwned(const GatherRecord* rec, const FacePair* candidates, std::size_
     hn::StoreU(hn::OddEven(hn::Max(x, y), hn::Min(x, y)), d16, reinterpret_cast<std::int32_t*>(ee));
     ee += detail::kEePicks.count[edge_owners];
     // The ninth EE pair, (edge 2 of a, edge 2 of b), branch-free as in the plain loop.
+    const Index p = ra.edge[2], q = rb.edge[2], diff = q - p, dmin = diff & (diff >> 31);
+    *ee = {p + dmin, q - dmin};
+    ee += (ma >> 5) & (mb >> 5) & 1u;
+  }
+  *n_vf = std::size_t(vf - out_vf);
+  *n_ee = std::size_t(ee - out_ee);
+  return true;
+#elif HWY_TARGET == HWY_AVX2
+  // The same tables with 256-bit vectors: each output vector holds four pairs, each lane taken from a's record
+  // (table entry < 8) or b's (≥ 8), i.e. one permutation of each and a blend.
+  const hn::Full256<std::int32_t> d8;
+  const auto seven = hn::Set(d8, 7);
+  VertexFacePair* vf = out_vf;
+  EdgeEdgePair* ee = out_ee;
+  for (std::size_t k = 0; k < n; ++k) {
+    const GatherRecord &ra = rec[candidates[k].a], &rb = rec[candidates[k].b];
+    if (k + 12 < n) {
+      __builtin_prefetch(&rec[candidates[k + 12].a]);
+      __builtin_prefetch(&rec[candidates[k + 12].b]);
+    }
+    const auto a = hn::Load(d8, &ra.corner[0]), b = hn::Load(d8, &rb.corner[0]);
+    const auto pick = [&](const std::int32_t* lanes) {
+      const auto from = hn::Load(d8, lanes);
+      const auto lane = hn::IndicesFromVec(d8, hn::And(from, seven));
+      return hn::IfThenElse(hn::Gt(from, seven), hn::TableLookupLanes(b, lane), hn::TableLookupLanes(a, lane));
+    };
+    const auto min_max = [&](auto x) {
+      const auto y = hn::Shuffle2301(x);
+      return hn::OddEven(hn::Max(x, y), hn::Min(x, y));
+    };
+    const unsigned ma = unsigned(ra.owned_mask), mb = unsigned(rb.owned_mask);
+    const unsigned owners = (ma & 7u) | ((mb & 7u) << 3), edge_owners = ((ma >> 3) & 7u) | (((mb >> 3) & 7u) << 3);
+    const std::int32_t* vf_lanes = detail::kVfPicks.lanes[owners].data();
+    hn::StoreU(pick(vf_lanes), d8, reinterpret_cast<std::int32_t*>(vf));
+    hn::StoreU(pick(vf_lanes + 8), d8, reinterpret_cast<std::int32_t*>(vf + 4));
+    vf += detail::kVfPicks.count[owners];
+    const std::int32_t* ee_lanes = detail::kEePicks.lanes[edge_owners].data();
+    hn::StoreU(min_max(pick(ee_lanes)), d8, reinterpret_cast<std::int32_t*>(ee));
+    hn::StoreU(min_max(pick(ee_lanes + 8)), d8, reinterpret_cast<std::int32_t*>(ee + 4));
+    ee += detail::kEePicks.count[edge_owners];
     const Index p = ra.edge[2], q = rb.edge[2], diff = q - p, dmin = diff & (diff >> 31);
     *ee = {p + dmin, q - dmin};
     ee += (ma >> 5) & (mb >> 5) & 1u;

@@ -38,7 +38,7 @@ struct alignas(32) GatherRecord {
 static_assert(sizeof(GatherRecord) == 32);
 
 namespace detail {
-/// The fixed rule's gather in SIMD (gather_simd.cpp) on CPUs with 512-bit vectors: writes the pairs of
+/// The fixed rule's gather in SIMD (gather_simd.cpp) on CPUs with AVX2 or AVX-512: writes the pairs of
 /// append_pairs, in its order, and returns true; false on other CPUs (nothing written). Writes whole vectors:
 /// out_vf needs 6 slots per candidate + 8, out_ee 9 per candidate + 8.
 bool gather_owned_simd(const GatherRecord* rec, std::span<const FacePair> candidates, VertexFacePair* out_vf,

@@ -450,6 +450,22 @@ PipelineStrategies strategies(const char* tester, NarrowOptions narrow, int k, i
   return s;
 }
 
+TEST(SimdTargets, CcdlabSimdLimitsTheDispatchToTheNamedTargetOrALesserOne) {
+  const std::string best = plane_filter_target();
+  limit_simd_target("scalar");
+  const std::string scalar = plane_filter_target();
+  EXPECT_TRUE(scalar == "EMU128" || scalar == "SCALAR") << scalar;
+  if (hwy::SupportedTargets() & HWY_AVX2) {
+    limit_simd_target("avx2");
+    EXPECT_STREQ(plane_filter_target(), "AVX2");
+  }
+  limit_simd_target("avx512");  // the best this CPU has, AVX-512 or not
+  EXPECT_EQ(plane_filter_target(), best);
+  EXPECT_THROW(limit_simd_target("avx1024"), Error);
+  EXPECT_EQ(plane_filter_target(), best);  // a refused name changes nothing
+  hwy::SetSupportedTargetsForTest(0);
+}
+
 TEST(Gather, SimdGatherWritesThePlainLoopsPairsInItsOrderOnEveryTarget) {
   MeshData g = test::grid(14, 11);
   TriMesh mesh(Index(g.positions.size()), g.faces);
