@@ -187,17 +187,21 @@ void stage_rows(PlaneBatch& batch, std::size_t first, const std::int32_t* pairs,
   if (n == 0) return;
   double* cols[PlaneBatch::kColumns];
   for (int c = 0; c < PlaneBatch::kColumns; ++c) cols[c] = batch.column(c) + first;
-  HWY_DYNAMIC_DISPATCH(StageRows)(pairs, features, x_t0->data(), x_t1->data(), n, cols, vf);
+  HWY_DYNAMIC_DISPATCH(StageRows)(pairs, features, reinterpret_cast<const double*>(x_t0),
+                                  reinterpret_cast<const double*>(x_t1), n, cols, vf);
 }
 }  // namespace
 
 void stage_vf_rows(PlaneBatch& batch, std::size_t first, std::span<const VertexFacePair> pairs, const Face* faces,
                    const Vec3* x_t0, const Vec3* x_t1) {
-  stage_rows(batch, first, &pairs.data()->v, pairs.size(), faces->data(), x_t0, x_t1, true);
+  // Casts, not member access: an empty span's data() may be null.
+  stage_rows(batch, first, reinterpret_cast<const std::int32_t*>(pairs.data()), pairs.size(),
+             reinterpret_cast<const std::int32_t*>(faces), x_t0, x_t1, true);
 }
 void stage_ee_rows(PlaneBatch& batch, std::size_t first, std::span<const EdgeEdgePair> pairs, const Edge* edges,
                    const Vec3* x_t0, const Vec3* x_t1) {
-  stage_rows(batch, first, &pairs.data()->a, pairs.size(), edges->data(), x_t0, x_t1, false);
+  stage_rows(batch, first, reinterpret_cast<const std::int32_t*>(pairs.data()), pairs.size(),
+             reinterpret_cast<const std::int32_t*>(edges), x_t0, x_t1, false);
 }
 
 void PlaneBatch::resize(std::size_t n) {
