@@ -14,6 +14,7 @@
 #include <hwy/highway.h>
 
 #include <array>
+#include <utility>
 
 #ifndef CCDLAB_GATHER_TABLES
 #define CCDLAB_GATHER_TABLES
@@ -62,12 +63,47 @@ namespace ccdlab {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
+#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL || HWY_TARGET == HWY_AVX2
+// (x, y) lane pairs to (min, max): each lane beside its neighbour, the min kept in the even lane, the max in the odd.
+template <class V>
+HWY_INLINE V OrderPairs(V x) {
+  const V y = hn::Shuffle2301(x);
+  return hn::OddEven(hn::Max(x, y), hn::Min(x, y));
+}
+#endif
+
 bool GatherOwned(const GatherRecord* rec, const FacePair* candidates, std::size_t n, VertexFacePair* out_vf,
                  EdgeEdgePair* out_ee, std::size_t* n_vf, std::size_t* n_ee) {
-#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
+#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL || HWY_TARGET == HWY_AVX2
   static_assert(sizeof(GatherRecord) == 32 && sizeof(VertexFacePair) == 8 && sizeof(EdgeEdgePair) == 8);
   const hn::Full256<std::int32_t> d8;
+#if HWY_TARGET == HWY_AVX2
+  // Each 256-bit output vector holds four pairs, each lane taken from a's record (table entry < 8) or b's (≥ 8):
+  // one permutation of each and a blend; two vectors per table row.
+  const auto seven = hn::Set(d8, 7);
+  const auto load = [&](const GatherRecord& ra, const GatherRecord& rb) {
+    return std::pair(hn::Load(d8, &ra.corner[0]), hn::Load(d8, &rb.corner[0]));
+  };
+  const auto store = [&](const auto& both, const std::int32_t* lanes, bool order, void* out) {
+    for (int half = 0; half < 2; ++half) {
+      const auto from = hn::Load(d8, lanes + 8 * half);
+      const auto lane = hn::IndicesFromVec(d8, hn::And(from, seven));
+      const auto v = hn::IfThenElse(hn::Gt(from, seven), hn::TableLookupLanes(both.second, lane),
+                                    hn::TableLookupLanes(both.first, lane));
+      hn::StoreU(order ? OrderPairs(v) : v, d8, static_cast<std::int32_t*>(out) + 8 * half);
+    }
+  };
+#else
+  // Both records in one 512-bit vector; a table row is one permutation of it.
   const hn::Full512<std::int32_t> d16;
+  const auto load = [&](const GatherRecord& ra, const GatherRecord& rb) {
+    return hn::Combine(d16, hn::Load(d8, &rb.corner[0]), hn::Load(d8, &ra.corner[0]));
+  };
+  const auto store = [&](const auto& both, const std::int32_t* lanes, bool order, void* out) {
+    const auto v = hn::TableLookupLanes(both, hn::SetTableIndices(d16, lanes));
+    hn::StoreU(order ? OrderPairs(v) : v, d16, static_cast<std::int32_t*>(out));
+  };
+#endif
   VertexFacePair* vf = out_vf;
   EdgeEdgePair* ee = out_ee;
   for (std::size_t k = 0; k < n; ++k) {
@@ -76,60 +112,14 @@ bool GatherOwned(const GatherRecord* rec, const FacePair* candidates, std::size_
       __builtin_prefetch(&rec[candidates[k + 12].a]);
       __builtin_prefetch(&rec[candidates[k + 12].b]);
     }
-    const auto both = hn::Combine(d16, hn::Load(d8, &rb.corner[0]), hn::Load(d8, &ra.corner[0]));
+    const auto both = load(ra, rb);
     const unsigned ma = unsigned(ra.owned_mask), mb = unsigned(rb.owned_mask);
     const unsigned owners = (ma & 7u) | ((mb & 7u) << 3), edge_owners = ((ma >> 3) & 7u) | (((mb >> 3) & 7u) << 3);
-    const auto vf_pairs = hn::TableLookupLanes(both, hn::SetTableIndices(d16, detail::kVfPicks.lanes[owners].data()));
-    hn::StoreU(vf_pairs, d16, reinterpret_cast<std::int32_t*>(vf));
+    store(both, detail::kVfPicks.lanes[owners].data(), false, vf);
     vf += detail::kVfPicks.count[owners];
-    // (x, y) next to (y, x): min in the even lane, max in the odd one, a pair as one 64-bit lane.
-    const auto x = hn::TableLookupLanes(both, hn::SetTableIndices(d16, detail::kEePicks.lanes[edge_owners].data()));
-    const auto y = hn::Shuffle2301(x);
-    hn::StoreU(hn::OddEven(hn::Max(x, y), hn::Min(x, y)), d16, reinterpret_cast<std::int32_t*>(ee));
+    store(both, detail::kEePicks.lanes[edge_owners].data(), true, ee);
     ee += detail::kEePicks.count[edge_owners];
-    // The ninth EE pair, (edge 2 of a, edge 2 of b), branch-free as in the plain loop.
-    const Index p = ra.edge[2], q = rb.edge[2], diff = q - p, dmin = diff & (diff >> 31);
-    *ee = {p + dmin, q - dmin};
-    ee += (ma >> 5) & (mb >> 5) & 1u;
-  }
-  *n_vf = std::size_t(vf - out_vf);
-  *n_ee = std::size_t(ee - out_ee);
-  return true;
-#elif HWY_TARGET == HWY_AVX2
-  // The same tables with 256-bit vectors: each output vector holds four pairs, each lane taken from a's record
-  // (table entry < 8) or b's (≥ 8), i.e. one permutation of each and a blend.
-  const hn::Full256<std::int32_t> d8;
-  const auto seven = hn::Set(d8, 7);
-  VertexFacePair* vf = out_vf;
-  EdgeEdgePair* ee = out_ee;
-  for (std::size_t k = 0; k < n; ++k) {
-    const GatherRecord &ra = rec[candidates[k].a], &rb = rec[candidates[k].b];
-    if (k + 12 < n) {
-      __builtin_prefetch(&rec[candidates[k + 12].a]);
-      __builtin_prefetch(&rec[candidates[k + 12].b]);
-    }
-    const auto a = hn::Load(d8, &ra.corner[0]), b = hn::Load(d8, &rb.corner[0]);
-    const auto pick = [&](const std::int32_t* lanes) {
-      const auto from = hn::Load(d8, lanes);
-      const auto lane = hn::IndicesFromVec(d8, hn::And(from, seven));
-      return hn::IfThenElse(hn::Gt(from, seven), hn::TableLookupLanes(b, lane), hn::TableLookupLanes(a, lane));
-    };
-    const auto min_max = [&](auto x) {
-      const auto y = hn::Shuffle2301(x);
-      return hn::OddEven(hn::Max(x, y), hn::Min(x, y));
-    };
-    const unsigned ma = unsigned(ra.owned_mask), mb = unsigned(rb.owned_mask);
-    const unsigned owners = (ma & 7u) | ((mb & 7u) << 3), edge_owners = ((ma >> 3) & 7u) | (((mb >> 3) & 7u) << 3);
-    const std::int32_t* vf_lanes = detail::kVfPicks.lanes[owners].data();
-    hn::StoreU(pick(vf_lanes), d8, reinterpret_cast<std::int32_t*>(vf));
-    hn::StoreU(pick(vf_lanes + 8), d8, reinterpret_cast<std::int32_t*>(vf + 4));
-    vf += detail::kVfPicks.count[owners];
-    const std::int32_t* ee_lanes = detail::kEePicks.lanes[edge_owners].data();
-    hn::StoreU(min_max(pick(ee_lanes)), d8, reinterpret_cast<std::int32_t*>(ee));
-    hn::StoreU(min_max(pick(ee_lanes + 8)), d8, reinterpret_cast<std::int32_t*>(ee + 4));
-    ee += detail::kEePicks.count[edge_owners];
-    const Index p = ra.edge[2], q = rb.edge[2], diff = q - p, dmin = diff & (diff >> 31);
-    *ee = {p + dmin, q - dmin};
+    *ee = ordered_edge_pair(ra.edge[2], rb.edge[2]);  // the ninth EE pair, (edge 2 of a, edge 2 of b)
     ee += (ma >> 5) & (mb >> 5) & 1u;
   }
   *n_vf = std::size_t(vf - out_vf);

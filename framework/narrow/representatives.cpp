@@ -63,10 +63,7 @@ void Representatives::append_pairs(std::span<const FacePair> candidates, Uniniti
     }
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
-        // min and max without a branch (g++ made some of them jumps, taken at random: perf, rod-twist). Ids are
-        // non-negative int32, so the difference cannot overflow; d = min(0, y − x).
-        const Index x = ea[i], y = eb[j], diff = y - x, d = diff & (diff >> 31);
-        *out_ee = {x + d, y - d};
+        *out_ee = ordered_edge_pair(ea[i], eb[j]);
         out_ee += (ma >> (3 + i)) & (mb >> (3 + j)) & 1u;
       }
   }

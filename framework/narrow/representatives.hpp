@@ -37,6 +37,13 @@ struct alignas(32) GatherRecord {
 };
 static_assert(sizeof(GatherRecord) == 32);
 
+/// The EE pair of edges x and y, smaller id first, without a branch (g++ made std::min/max jumps here, taken at
+/// random: perf, rod-twist). Ids are non-negative int32, so y − x cannot overflow; d = min(0, y − x).
+constexpr EdgeEdgePair ordered_edge_pair(Index x, Index y) {
+  const Index diff = y - x, d = diff & (diff >> 31);
+  return {x + d, y - d};
+}
+
 namespace detail {
 /// The fixed rule's gather in SIMD (gather_simd.cpp) on CPUs with AVX2 or AVX-512: writes the pairs of
 /// append_pairs, in its order, and returns true; false on other CPUs (nothing written). Writes whole vectors:
