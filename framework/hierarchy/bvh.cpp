@@ -102,7 +102,7 @@ std::vector<Index> subtree_faces(const BvhTopology& bvh, Index root) {
 
 namespace ccdlab {
 
-WideLayout WideLayout::of(const BvhTopology& bvh) {
+WideLayout WideLayout::of(const BvhTopology& bvh, const std::vector<Face>& faces) {
   WideLayout w;
   w.version = bvh.version;
   w.slot.assign(bvh.nodes.size(), -1);
@@ -132,7 +132,7 @@ WideLayout WideLayout::of(const BvhTopology& bvh) {
     w.lanes.push_back(l);
   }
   if (bvh.size() > 0) {
-    Lanes top;
+    Lanes top{};
     top.node.fill(-1);
     top.slot.fill(-1);
     top.node[0] = 0;
@@ -141,6 +141,10 @@ WideLayout WideLayout::of(const BvhTopology& bvh) {
       if (top.node[j] >= 0) top.slot[j] = w.slot[top.node[j]];
     w.lanes.push_back(top);
   }
+  for (Lanes& l : w.lanes)
+    for (int j = 0; j < kWidth; ++j)
+      for (int p = 0; p < 3; ++p)
+        l.vert[p][j] = l.node[j] >= 0 && l.slot[j] < 0 ? faces[std::size_t(~l.slot[j])][std::size_t(p)] : -1;
   w.home.assign(bvh.nodes.size(), -1);
   for (Index r = 0; r < Index(w.lanes.size()); ++r)
     for (int j = 0; j < kWidth; ++j) {

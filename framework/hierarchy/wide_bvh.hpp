@@ -17,13 +17,15 @@
 #include <vector>
 
 #include "framework/hierarchy/bvh.hpp"
+#include "framework/util/uninitialized_vector.hpp"
 
 namespace ccdlab {
 
-/// bv.width when a config does not say: binary. The 4-wide walk makes 9–16% fewer BV tests, but each costs more
-/// than a binary one: alone, it is as fast as the binary walk on rod-twist and 1.3× slower on n-body; inside a
-/// step, where the narrow phase evicts its records between tasks, slower on both (docs/wide-bvh.md).
-inline constexpr int kDefaultBvhWidth = 2;
+/// bv.width when a config does not say: the 4-wide view. On a CPU with AVX-512 its lane-pair walk makes a BV test
+/// 2.1–2.6× cheaper than the binary walk's and the steady-state step 1.2–1.3× faster (rod-twist, n-body; docs/wide-bvh.md).
+/// Elsewhere its SSE2 walk costs about what the binary walk does (within ±10% inside a step); `bv.width: 2` is the
+/// binary BVTT.
+inline constexpr int kDefaultBvhWidth = 4;
 
 struct WideLayout {
   static constexpr int kWidth = 4;
@@ -32,18 +34,24 @@ struct WideLayout {
   struct Lanes {
     std::array<Index, kWidth> node;
     std::array<Index, kWidth> slot;
+    /// Leaf lanes: their face's vertices, vert[corner][lane] (the lane-pair walk tests adjacency in SIMD); other
+    /// lanes hold negative ids.
+    std::array<std::array<Index, kWidth>, 3> vert;
   };
+  // The arrays are large (rod-twist: 7.7 MB) and cut on a run's first step: in huge pages (UninitializedVector).
+  // In 4 KiB pages, their first touches made cutting rod-twist's layout take 68 ms instead of 4.
   std::uint64_t version = ~0ull;  ///< the topology version it was cut from
-  std::vector<Index> slot;        ///< per node: its wide node, or ~face (< 0) for a leaf
+  UninitializedVector<Index> slot;  ///< per node: its wide node, or ~face (< 0) for a leaf
   /// Per wide node: the grandchildren (a leaf child stands for itself). One more record follows the inner
   /// nodes' (index `top()`): the root and its children, never opened, so that every node is some record's lane.
-  std::vector<Lanes> lanes;
+  UninitializedVector<Lanes> lanes;
   /// Per node: a lane that holds it, as record · kWidth + lane. A traversal reads a node's k-DOP there, in a
   /// record it has just opened, instead of in the binary array (where the wide walk's reads missed the cache).
-  std::vector<Index> home;
+  UninitializedVector<Index> home;
 
-  /// Cuts the layout of `bvh` (every inner node gets a slot, in node order).
-  static WideLayout of(const BvhTopology& bvh);
+  /// Cuts the layout of `bvh` (every inner node gets a slot, in node order); `faces` are the mesh's (the leaves'
+  /// vertex ids).
+  static WideLayout of(const BvhTopology& bvh, const std::vector<Face>& faces);
   /// The record of the root and its children (lanes.size() − 1); only their homes point into it.
   [[nodiscard]] Index top() const { return Index(lanes.size()) - 1; }
   [[nodiscard]] std::size_t memory_bytes() const {

@@ -278,7 +278,7 @@ void CcdPipeline::refit_body(BodyState& body, PhaseTrace& trace) {
 
 void CcdPipeline::refit_wide(BodyState& body, PhaseTrace& trace) {
   const BvhTopology& bvh = body.bvh;
-  if (body.wide_layout.version != bvh.version) body.wide_layout = WideLayout::of(bvh);  // after restructuring too
+  if (body.wide_layout.version != bvh.version) body.wide_layout = WideLayout::of(bvh, mesh_.faces());  // after restructuring too
   const WideLayout& layout = body.wide_layout;
   std::visit(
       [&](auto& node_wide) {

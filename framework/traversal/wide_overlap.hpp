@@ -1,10 +1,24 @@
 #pragma once
-// One k-DOP against the four lanes of a wide node: one 4-float compare per axis and side. Four floats are
-// exactly one SSE2 register, and SSE2 is part of every x86-64 CPU, so this needs no run-time dispatch and stays
-// inline in the traversal loop (Highway's static target on a baseline x86-64 build is its scalar one, one
-// lane). Other CPUs take the plain loops, which are also the reference the tests compare with.
+// Overlap tests of the 4-wide view's lanes (framework/hierarchy/wide_bvh.hpp).
+//   overlapping_lanes      — one k-DOP against the four lanes of a record: one 4-float compare per axis and side.
+//                            Four floats are exactly one SSE2 register, and SSE2 is part of every x86-64 CPU, so
+//                            this needs no run-time dispatch and stays inline in the traversal loop (Highway's
+//                            static target on a baseline x86-64 build is its scalar one, one lane).
+//   overlapping_lane_pairs — the 4 × 4 lane pairs of two records: one 16-float compare per axis and side, in
+//                            AVX-512 (16 floats are one register). Compiled for AVX-512 by a function attribute and
+//                            called only where the CPU has it (lane_pairs_walk_available), so the default build still
+//                            runs on any x86-64 CPU.
+// The plain loops are the reference the tests compare with, and what other CPUs take.
+#include <cstdint>
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+/// What the AVX-512 code is compiled for: Highway's AVX3 target (AVX-512 F/VL/DQ/BW and the AVX2 set below it).
+#define CCDLAB_AVX512_TARGET \
+  __attribute__((target("avx2,bmi,bmi2,lzcnt,popcnt,avx512f,avx512vl,avx512dq,avx512bw")))
+#define CCDLAB_HAS_AVX512_WALK 1
 #endif
 
 #include "framework/hierarchy/wide_bvh.hpp"
@@ -23,6 +37,19 @@ inline unsigned overlapping_lanes_plain(const WideBounds<BV>& w, const Query& q)
   }
   return mask;
 }
+
+/// Bit 4i + j set ⇔ lane i of a overlaps lane j of b (closed intervals, as KDop::overlaps). Empty lanes never do.
+template <class BV>
+inline unsigned overlapping_lane_pairs_plain(const WideBounds<BV>& a, const WideBounds<BV>& b) {
+  unsigned mask = 0;
+  for (int i = 0; i < WideLayout::kWidth; ++i)
+    mask |= overlapping_lanes_plain(b, WideLane<BV>{&a, i}) << (4 * i);
+  return mask;
+}
+
+/// Whether traverse_bvtt picks the AVX-512 lane-pair walk: this CPU has AVX-512 and CCDLAB_SIMD (Highway's
+/// supported targets) allows it. Cheap (Highway's chosen target, no CPUID): asked once per traversal call.
+bool lane_pairs_walk_available();
 
 /// The lanes' size measures (KDop::size_measure: the extents along the first three axes, summed in that order).
 template <class BV>
@@ -49,7 +76,31 @@ inline void lane_sizes(const WideBounds<BV>& w, float* out) {
   const auto extent = [&](int i) { return _mm_sub_ps(_mm_load_ps(w.hi[i]), _mm_load_ps(w.lo[i])); };
   _mm_storeu_ps(out, _mm_add_ps(_mm_add_ps(extent(0), extent(1)), extent(2)));
 }
-#else
+#endif
+
+#if defined(CCDLAB_HAS_AVX512_WALK)
+/// Lane i of a, repeated four times, for i = 0..3: the rows of the 4 × 4 lane pairs (lane 4i + j holds a's i).
+#define CCDLAB_LANE_ROWS _mm512_set_epi32(3, 3, 3, 3, 2, 2, 2, 2, 1, 1, 1, 1, 0, 0, 0, 0)
+
+/// overlapping_lane_pairs_plain in AVX-512: per axis, a's lanes spread over the rows (one permute), b's four
+/// lanes repeated over the columns (one broadcast load), two compares into a mask register.
+template <class BV>
+CCDLAB_AVX512_TARGET __attribute__((always_inline)) inline unsigned overlapping_lane_pairs(const WideBounds<BV>& a,
+                                                                                           const WideBounds<BV>& b) {
+  const __m512i rows = CCDLAB_LANE_ROWS;
+  __mmask16 apart = 0;
+  for (int i = 0; i < BV::num_axes; ++i) {
+    const __m512 alo = _mm512_permutexvar_ps(rows, _mm512_castps128_ps512(_mm_load_ps(a.lo[i])));
+    const __m512 ahi = _mm512_permutexvar_ps(rows, _mm512_castps128_ps512(_mm_load_ps(a.hi[i])));
+    const __m512 blo = _mm512_broadcast_f32x4(_mm_load_ps(b.lo[i]));
+    const __m512 bhi = _mm512_broadcast_f32x4(_mm_load_ps(b.hi[i]));
+    apart |= _mm512_cmp_ps_mask(alo, bhi, _CMP_GT_OQ) | _mm512_cmp_ps_mask(blo, ahi, _CMP_GT_OQ);
+  }
+  return unsigned(~apart) & 0xFFFFu;
+}
+#endif
+
+#if !defined(__SSE2__)
 template <class BV, class Query>
 inline unsigned overlapping_lanes(const WideBounds<BV>& w, const Query& q) {
   return overlapping_lanes_plain(w, q);

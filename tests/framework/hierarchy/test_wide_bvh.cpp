@@ -1,11 +1,15 @@
 // The 4-wide view of a BVH (framework/hierarchy/wide_bvh.hpp): its lanes are exactly the grandchildren (a leaf
 // child standing for itself), its bounds are the binary volumes, and the SIMD lane test agrees with
-// KDop::overlaps (and with the plain loops) on every lane — including identical volumes, which overlap (closed sets).
+// KDop::overlaps (and with the plain loops) on every lane and lane pair — including identical volumes, which overlap
+// (closed sets).
 #include <gtest/gtest.h>
+
+#include <hwy/targets.h>
 
 #include <random>
 
 #include "framework/hierarchy/wide_bvh.hpp"
+#include "framework/narrow/plane_filter.hpp"
 #include "framework/traversal/wide_overlap.hpp"
 #include "strategies/builders/median_builder.hpp"
 #include "support/test_meshes.hpp"
@@ -13,8 +17,9 @@
 namespace ccdlab {
 namespace {
 
-BvhTopology grid_bvh(int n, int m, std::vector<Box3>& boxes) {
+BvhTopology grid_bvh(int n, int m, std::vector<Box3>& boxes, std::vector<Face>* faces_out = nullptr) {
   const MeshData g = test::grid(n, m);
+  if (faces_out) faces_out->assign(g.faces.begin(), g.faces.end());
   std::vector<Index> faces;
   for (Index f = 0; f < Index(g.faces.size()); ++f) {
     faces.push_back(f);
@@ -27,8 +32,9 @@ BvhTopology grid_bvh(int n, int m, std::vector<Box3>& boxes) {
 
 TEST(WideBvh, LanesAreTheGrandchildren) {
   std::vector<Box3> boxes;
-  const BvhTopology bvh = grid_bvh(7, 5, boxes);  // 70 leaves: some inner nodes have a leaf child
-  const WideLayout w = WideLayout::of(bvh);
+  std::vector<Face> faces;
+  const BvhTopology bvh = grid_bvh(7, 5, boxes, &faces);  // 70 leaves: some inner nodes have a leaf child
+  const WideLayout w = WideLayout::of(bvh, faces);
   ASSERT_EQ(w.version, bvh.version);
   std::size_t inner = 0, with_leaf_child = 0;
   for (Index i = 0; i < bvh.size(); ++i) {
@@ -54,6 +60,15 @@ TEST(WideBvh, LanesAreTheGrandchildren) {
       if (j < expected.size()) {
         EXPECT_EQ(l.slot[j], w.slot[l.node[j]]);
       }
+      // A leaf lane carries its face's vertex ids (the lane-pair walk's adjacency test); others negative ids.
+      for (std::size_t p = 0; p < 3; ++p) {
+        const bool leaf = j < expected.size() && bvh.nodes[l.node[j]].is_leaf();
+        if (leaf) {
+          EXPECT_EQ(l.vert[p][j], faces[std::size_t(bvh.nodes[l.node[j]].face)][p]);
+        } else {
+          EXPECT_LT(l.vert[p][j], 0);
+        }
+      }
     }
     ++inner;
   }
@@ -77,17 +92,25 @@ TEST(WideBvh, LanesAreTheGrandchildren) {
 
 TEST(WideBvh, ASingleLeafTreeHasATopRecord) {
   std::vector<Box3> boxes;
-  const BvhTopology bvh = grid_bvh(1, 1, boxes);  // two faces: a root and two leaves
-  const WideLayout w = WideLayout::of(bvh);
+  std::vector<Face> faces;
+  const BvhTopology bvh = grid_bvh(1, 1, boxes, &faces);  // two faces: a root and two leaves
+  const WideLayout w = WideLayout::of(bvh, faces);
   ASSERT_EQ(w.lanes.size(), 2u);
   BvhTopology one = bvh;
   one.nodes.resize(1);
   one.nodes[0] = bvh.nodes[1];  // a leaf as the root
-  const WideLayout w1 = WideLayout::of(one);
+  const WideLayout w1 = WideLayout::of(one, faces);
   ASSERT_EQ(w1.lanes.size(), 1u);
   EXPECT_EQ(w1.home[0], 0);
   EXPECT_EQ(w1.lanes[0].slot[0], ~bvh.nodes[1].face);
 }
+
+#if defined(CCDLAB_HAS_AVX512_WALK)
+template <class BV>
+CCDLAB_AVX512_TARGET unsigned lane_pairs_avx512_for_test(const WideBounds<BV>& a, const WideBounds<BV>& b) {
+  return overlapping_lane_pairs(a, b);
+}
+#endif
 
 template <int K>
 void check_lane_test(std::mt19937& rng) {
@@ -128,6 +151,24 @@ void check_lane_test(std::mt19937& rng) {
       EXPECT_EQ(bool(mask >> j & 1u), expected) << "K=" << K << " trial " << trial << " lane " << j;
       (expected ? hits : misses) += 1;
     }
+    // The 4 × 4 lane pairs of w and a record of random lanes (one of them a lane of w: identical volumes).
+    WideBounds<BV> other;
+    std::array<BV, 4> other_lane;
+    for (int j = 0; j < 4; ++j) {
+      other_lane[j] = j == trial % 4 ? lane[0] : random_dop();
+      for (int i = 0; i < BV::num_axes; ++i)
+        other.lo[i][j] = other_lane[j].min(i), other.hi[i][j] = other_lane[j].max(i);
+    }
+    const unsigned pairs = overlapping_lane_pairs_plain(w, other);
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        EXPECT_EQ(bool(pairs >> (4 * i + j) & 1u), i < used && lane[i].overlaps(other_lane[j]))
+            << "K=" << K << " trial " << trial << " lane pair " << i << ", " << j;
+#if defined(CCDLAB_HAS_AVX512_WALK)
+    if (lane_pairs_walk_available()) {
+      EXPECT_EQ(lane_pairs_avx512_for_test(w, other), pairs) << "AVX-512 and plain lane-pair tests differ";
+    }
+#endif
     alignas(16) float size[4], plain[4];
     lane_sizes(w, size);
     lane_sizes_plain(w, plain);
@@ -146,6 +187,21 @@ TEST(WideBvh, SimdLaneTestAgreesWithKDopOverlaps) {
   check_lane_test<14>(rng);
   check_lane_test<18>(rng);
   check_lane_test<26>(rng);
+}
+
+TEST(WideBvh, TheLanePairWalkRunsWhereTheCpuHasAvx512AndCcdlabSimdAllowsIt) {
+#if defined(CCDLAB_HAS_AVX512_WALK)
+  const bool avx512 = (hwy::SupportedTargets() & (HWY_AVX3 | HWY_AVX3_DL)) != 0;
+#else
+  const bool avx512 = false;  // not compiled in (not x86-64, or not GCC/Clang)
+#endif
+  EXPECT_EQ(lane_pairs_walk_available(), avx512);
+  if (hwy::SupportedTargets() & HWY_AVX2) {
+    limit_simd_target("avx2");
+    EXPECT_FALSE(lane_pairs_walk_available()) << "CCDLAB_SIMD=avx2 takes the SSE2 walk";
+    hwy::SetSupportedTargetsForTest(0);
+  }
+  EXPECT_EQ(lane_pairs_walk_available(), avx512);
 }
 
 }  // namespace

@@ -2,9 +2,12 @@
 // builders — candidate face pairs (broad phase) and contacts (whole pipeline) must be identical sets.
 #include <gtest/gtest.h>
 
+#include <hwy/targets.h>
+
 #include <random>
 
 #include "framework/pipeline/brute_force.hpp"
+#include "framework/narrow/plane_filter.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
 #include "strategies/registry.hpp"
 #include "support/test_meshes.hpp"
@@ -16,6 +19,9 @@ struct Case {
   int k;
   std::string builder;
   int width = 2;  ///< bv.width: the binary BVTT or the 4-wide view (same candidates)
+  /// CCDLAB_SIMD for the case, or "" for the CPU's best: "avx2" makes width 4 take the SSE2 walk
+  /// (traverse_bvtt_wide) instead of the AVX-512 one (traverse_bvtt_lane_pairs) on a CPU that has AVX-512.
+  std::string simd = "";
 };
 
 PipelineStrategies strategies(const Case& c) {
@@ -56,7 +62,13 @@ std::vector<std::tuple<ContactKind, Index, Index>> keys(const Contacts& cs) {
   return k;
 }
 
-class Differential : public ::testing::TestWithParam<Case> {};
+class Differential : public ::testing::TestWithParam<Case> {
+ protected:
+  void SetUp() override {
+    if (!GetParam().simd.empty() && (hwy::SupportedTargets() & HWY_AVX2)) limit_simd_target(GetParam().simd);
+  }
+  void TearDown() override { hwy::SetSupportedTargetsForTest(0); }
+};
 
 TEST_P(Differential, SelfCollisionMatchesBruteForce) {
   MeshData g = test::grid(9, 7);
@@ -117,10 +129,12 @@ INSTANTIATE_TEST_SUITE_P(EveryKAndBuilder, Differential,
                          ::testing::Values(Case{6, "median"}, Case{14, "median"}, Case{18, "median"}, Case{26, "median"},
                                            Case{6, "sah"}, Case{14, "sah"}, Case{18, "sah"}, Case{26, "sah"},
                                            Case{6, "median", 4}, Case{14, "sah", 4}, Case{18, "median", 4},
-                                           Case{26, "sah", 4}),
+                                           Case{26, "sah", 4}, Case{6, "sah", 4, "avx2"}, Case{18, "median", 4, "avx2"},
+                                           Case{26, "median", 4, "avx2"}),
                          [](const auto& info) {
                            return info.param.builder + "_k" + std::to_string(info.param.k) + "_w" +
-                                  std::to_string(info.param.width);
+                                  std::to_string(info.param.width) + (info.param.simd.empty() ? "" : "_") +
+                                  info.param.simd;
                          });
 
 }  // namespace

@@ -1,0 +1,334 @@
+#pragma once
+// The walks over the 4-wide view (bv.width: 4; framework/hierarchy/wide_bvh.hpp, docs/wide-bvh.md). Both make
+// the binary BVTT's candidates (see wide_bvh.hpp for why skipping levels keeps them):
+//   traverse_bvtt_lane_pairs — AVX-512: a pair node opens both sides' records and tests their 4 × 4 lane pairs
+//                              in one 16-lane compare per axis; no branch on the answers (compress-stores).
+//   traverse_bvtt_wide       — any x86-64 (SSE2): a pair node opens its larger side's record and tests its four
+//                              lanes against the other side; the walk for CPUs without AVX-512.
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <vector>
+
+#include "framework/traversal/bvtt_view.hpp"
+#include "framework/traversal/wide_overlap.hpp"
+
+namespace ccdlab {
+
+/// A node on the wide traversal's stack, carrying what its visit needs so that it reads no binary node. A pair
+/// node (known to overlap): each side's home (WideLayout::home: the lane that holds its k-DOP, record · 4 + lane),
+/// wide slot (a wide node, or ~face for a leaf) and size measure. A self node (self passes only): ha == hb ==
+/// the node's id (a pair node's sides are different lanes, so its homes differ).
+struct WideBvttEntry {
+  Index ha, hb;
+  Index wa, wb;
+  float sa, sb;
+  [[nodiscard]] bool both_leaves() const { return (wa & wb) < 0; }  // slots ~face
+  /// The descent rule of a pair node (the binary one): open a's record — the larger side, never a leaf.
+  [[nodiscard]] bool descends_a() const { return wb < 0 || (wa >= 0 && sa >= sb); }
+};
+
+/// The 16-bit lane-pair mask (bit 4i + j: a's lane i, b's lane j) of the rows in `lanes` (bit i: a's lane i).
+constexpr unsigned lane_rows_mask(unsigned lanes) {
+  return (lanes & 1u) * 0xFu | (lanes >> 1 & 1u) * 0xF0u | (lanes >> 2 & 1u) * 0xF00u | (lanes >> 3 & 1u) * 0xF000u;
+}
+
+/// Lanes of a record that hold a node (BV tests when it is opened): 2, 3 or 4, the empty ones last.
+template <class BV>
+int used_lanes(const WideBounds<BV>& r) {
+  constexpr int W = WideLayout::kWidth;
+  return W - (r.lanes.node[W - 1] < 0) - (r.lanes.node[W - 2] < 0);
+}
+
+/// Depth-first traversal over the 4-wide view: a pair node's larger side opens all its lanes at once and only
+/// the lanes that overlap the other side are pushed (test before push). Self nodes still open into (L, L),
+/// (R, R), (L, R) as in the binary BVTT, so normal-cone skips apply unchanged. The descent rule is the binary
+/// one (the larger side by size_measure, never a leaf); the candidates are the same (see wide_bvh.hpp).
+/// Written like the binary walk (raw pointers, candidates written in place). A pair visit reads the record it
+/// opens and the other side's k-DOP from the lane that holds it, in a record opened a moment ago: reading it
+/// from the binary array instead missed the cache (17% of the walk's samples, rod-twist). A hit lane whose own
+/// visit would open the other side's record (the usual case: a lane is two levels smaller) is not pushed: that
+/// test is made at once, while both records are in cache. Same BV tests as pushing it, in another order.
+template <class BV>
+void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideBvttEntry>& stack, FacePairs& pairs,
+                        std::uint64_t& bv_tests_out) {
+  constexpr int W = WideLayout::kWidth;
+  const BvhNode* const na = v.bvh_a->nodes.data();
+  const BV* const bva = v.bv_a->data();
+  const BV* const bvb = v.bv_b->data();
+  const Index* const slot_a = v.wide_layout_a->slot.data();
+  const Index* const slot_b = v.wide_layout_b->slot.data();
+  const Index* const home_a = v.wide_layout_a->home.data();
+  const Index* const home_b = v.wide_layout_b->home.data();
+  const WideBounds<BV>* const wide_a = v.wide_a->data();
+  const WideBounds<BV>* const wide_b = v.wide_b->data();
+  const Index* const skip_root = v.skip_root;
+  const bool self = v.self;
+  std::uint64_t bv_tests = 0;
+  const auto pair_entry = [&](Index a, Index b) {
+    return WideBvttEntry{home_a[a], home_b[b], slot_a[a], slot_b[b], bva[a].size_measure(), bvb[b].size_measure()};
+  };
+  // A visit pushes at most W · W pair nodes, or 2 entries for a self node; room is checked before each visit.
+  if (stack.size() < 64) stack.resize(64);
+  WideBvttEntry* base = stack.data();
+  WideBvttEntry* top = base;
+  WideBvttEntry* room = base + stack.size() - W * W;
+  std::size_t emitted = pairs.size();
+  pairs.resize(std::max<std::size_t>(pairs.capacity(), emitted + 1024));
+  FacePair* pout = pairs.data() + emitted;
+  FacePair* pend = pairs.data() + pairs.size();
+  WideBvttEntry n{start.a, start.b, -1, -1, 0, 0};
+  bool visit = true;
+  if (!(self && start.a == start.b)) {
+    ++bv_tests;
+    visit = bva[start.a].overlaps(bvb[start.b]);
+    if (visit) n = pair_entry(start.a, start.b);
+  }
+  const auto emit = [&](const WideBvttEntry& leaves) {  // the candidate of two overlapping leaves
+    if (pout == pend) [[unlikely]] {
+      emitted = std::size_t(pout - pairs.data());
+      pairs.resize(2 * pairs.size());
+      pout = pairs.data() + emitted;
+      pend = pairs.data() + pairs.size();
+    }
+    pout = v.write_face_pair(pout, ~leaves.wa, ~leaves.wb);
+  };
+  alignas(16) float size[W];
+  for (;;) {
+    if (visit) {
+      if (top > room) [[unlikely]] {
+        const std::size_t used = std::size_t(top - base);
+        stack.resize(2 * stack.size());
+        base = stack.data();
+        top = base + used;
+        room = base + stack.size() - W * W;
+      }
+      if (self && n.ha == n.hb) {
+        const BvhNode& A = na[n.ha];
+        if (!A.is_leaf() && !(skip_root && skip_root[n.ha] >= 0)) {
+          ++bv_tests;
+          if (bva[A.left].overlaps(bva[A.right])) *top++ = pair_entry(A.left, A.right);
+          *top++ = {A.right, A.right, -1, -1, 0, 0};
+          n = {A.left, A.left, -1, -1, 0, 0};
+          continue;
+        }
+      } else if (n.both_leaves()) {
+        emit(n);
+      } else {
+        const bool down_a = n.descends_a();
+        const auto side_of = [&](bool a_side) { return a_side ? wide_a : wide_b; };
+        const Index rx = down_a ? n.wa : n.wb;  // the record opened
+        const WideBounds<BV>& bx = side_of(down_a)[rx];
+        const Index h = down_a ? n.hb : n.ha;  // the other side's home
+        unsigned hit = overlapping_lanes(bx, WideLane<BV>{side_of(!down_a) + h / W, h % W});
+        bv_tests += used_lanes(bx);
+        if (hit) {
+          lane_sizes(bx, size);
+          const Index ry = down_a ? n.wb : n.wa;  // the other side's record, if it is inner
+          alignas(16) float size_y[W];
+          bool sized_y = false;
+          const auto lane_child = [](WideBvttEntry c, bool a_side, Index record, const WideBounds<BV>& b,
+                                     const float* sz, int j) {
+            if (a_side) {
+              c.ha = record * W + j, c.wa = b.lanes.slot[j], c.sa = sz[j];
+            } else {
+              c.hb = record * W + j, c.wb = b.lanes.slot[j], c.sb = sz[j];
+            }
+            return c;
+          };
+          // A pair node found to overlap: emitted if both are leaves, else pushed, its next record asked for.
+          const auto settle = [&](const WideBvttEntry& c) {
+            if (c.both_leaves()) {
+              emit(c);
+              return;
+            }
+            const char* r = reinterpret_cast<const char*>(c.descends_a() ? wide_a + c.wa : wide_b + c.wb);
+            for (std::size_t line = 0; line < sizeof(WideBounds<BV>); line += 64) __builtin_prefetch(r + line);
+            *top++ = c;
+          };
+          for (; hit; hit &= hit - 1) {
+            const int j = std::countr_zero(hit);
+            const WideBvttEntry c = lane_child(n, down_a, rx, bx, size, j);
+            // The visit of c would open the other side's record with lane j as its query (the binary rule):
+            // make that test now, while both records are in cache, instead of pushing c.
+            if (c.both_leaves() || c.descends_a() == down_a) {
+              settle(c);
+              continue;
+            }
+            const WideBounds<BV>& by = side_of(!down_a)[ry];
+            unsigned hit_y = overlapping_lanes(by, WideLane<BV>{&bx, j});
+            bv_tests += used_lanes(by);
+            if (hit_y && !sized_y) lane_sizes(by, size_y), sized_y = true;
+            for (; hit_y; hit_y &= hit_y - 1) settle(lane_child(c, !down_a, ry, by, size_y, std::countr_zero(hit_y)));
+          }
+        }
+      }
+    }
+    if (top == base) break;
+    n = *--top;
+    visit = true;
+  }
+  pairs.resize(std::size_t(pout - pairs.data()));
+  bv_tests_out += bv_tests;
+}
+
+
+/// The lane-pair walk's stack: four columns (each side's home and slot, as WideBvttEntry without the sizes), so
+/// that a visit pushes all its overlapping lane pairs with one compress-store per column. A self node is (id, id,
+/// −1, −1). Each column has room for 16 more entries than `cap` holds, for the full-width stores.
+class LanePairStack {
+ public:
+  static constexpr std::size_t kSlack = 16;
+  std::size_t cap() const { return cap_; }
+  Index* column(int c) { return buf_.data() + std::size_t(c) * (cap_ + kSlack); }
+  /// Room for at least `n` entries, keeping the first `used`.
+  void reserve(std::size_t n, std::size_t used) {
+    if (n <= cap_) return;
+    std::size_t cap = std::max<std::size_t>(256, cap_);
+    while (cap < n) cap *= 2;
+    std::vector<Index> grown(4 * (cap + kSlack));
+    for (int c = 0; c < 4; ++c) std::copy_n(column(c), used, grown.data() + std::size_t(c) * (cap + kSlack));
+    buf_.swap(grown);
+    cap_ = cap;
+  }
+
+ private:
+  std::vector<Index> buf_;
+  std::size_t cap_ = 0;
+};
+
+#if defined(CCDLAB_HAS_AVX512_WALK)
+/// Depth-first traversal over the 4-wide view in AVX-512 (call only where lane_pairs_walk_available()). A pair
+/// node opens both sides at once: an inner side's record, or, for a leaf, the record that holds it (its home)
+/// restricted to that lane. One overlapping_lane_pairs gives the 16 lane pairs' answers; the pairs of two leaves
+/// are written as candidates (adjacency tested in SIMD on the lanes' vertex ids, WideLayout::Lanes::vert) and the
+/// others pushed, each with one compress per 16 lanes — no branch on any answer, which is what made the other
+/// walks pay ~11 ns per BV test (docs/wide-bvh.md). Self nodes open into (L, L), (R, R), (L, R) as in the binary
+/// BVTT, so normal-cone skips apply unchanged. Same candidates as the binary walk (wide_bvh.hpp), in another
+/// order; a BV test is one lane pair of the restricted records.
+template <class BV>
+CCDLAB_AVX512_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode start, LanePairStack& stack,
+                                                   FacePairs& pairs, std::uint64_t& bv_tests_out) {
+  constexpr int W = WideLayout::kWidth;
+  const BvhNode* const na = v.bvh_a->nodes.data();
+  const BV* const bva = v.bv_a->data();
+  const BV* const bvb = v.bv_b->data();
+  const Index* const slot_a = v.wide_layout_a->slot.data();
+  const Index* const slot_b = v.wide_layout_b->slot.data();
+  const Index* const home_a = v.wide_layout_a->home.data();
+  const Index* const home_b = v.wide_layout_b->home.data();
+  const WideBounds<BV>* const wide_a = v.wide_a->data();
+  const WideBounds<BV>* const wide_b = v.wide_b->data();
+  const Index* const skip_root = v.skip_root;
+  const bool self = v.self;
+  std::uint64_t bv_tests = 0;
+  // A visit pushes at most 16 pair nodes, or 2 for a self node; room is checked before each visit.
+  std::size_t top = 0;
+  Index *col_ha = nullptr, *col_hb = nullptr, *col_wa = nullptr, *col_wb = nullptr;
+  const auto make_room = [&](std::size_t n) {
+    stack.reserve(n, top);
+    col_ha = stack.column(0), col_hb = stack.column(1), col_wa = stack.column(2), col_wb = stack.column(3);
+  };
+  make_room(64);
+  const auto push = [&](Index ha, Index hb, Index wa, Index wb) {
+    col_ha[top] = ha, col_hb[top] = hb, col_wa[top] = wa, col_wb[top] = wb;
+    ++top;
+  };
+  // Candidates: written in place, 16 at a time (full-width stores), into room made ahead, trimmed at the end.
+  std::size_t emitted = pairs.size();
+  pairs.resize(std::max<std::size_t>(pairs.capacity(), emitted + 1024));
+  FacePair* pout = pairs.data() + emitted;
+  FacePair* pend = pairs.data() + pairs.size();
+  // The visited node: each side's home and slot (as on the stack).
+  Index ha = start.a, hb = start.b, wa = -1, wb = -1;
+  bool visit = true;
+  if (!(self && start.a == start.b)) {
+    ++bv_tests;
+    visit = bva[start.a].overlaps(bvb[start.b]);
+    ha = home_a[start.a], hb = home_b[start.b], wa = slot_a[start.a], wb = slot_b[start.b];
+  }
+  const __m512i rows = CCDLAB_LANE_ROWS;  // lane 4i + j: row i (a's lane), column j (b's lane)
+  const __m512i cols = _mm512_set_epi32(3, 2, 1, 0, 3, 2, 1, 0, 3, 2, 1, 0, 3, 2, 1, 0);
+  // Interleave (lo, hi) of lanes 0..7 and 8..15 into FacePairs.
+  const __m512i pairs_0_7 = _mm512_set_epi32(23, 7, 22, 6, 21, 5, 20, 4, 19, 3, 18, 2, 17, 1, 16, 0);
+  const __m512i pairs_8_15 = _mm512_set_epi32(31, 15, 30, 14, 29, 13, 28, 12, 27, 11, 26, 10, 25, 9, 24, 8);
+  const auto load4 = [](const Index* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); };
+  for (;;) {
+    if (visit) {
+      if (top + 2 * W * W > stack.cap()) [[unlikely]] make_room(top + 2 * W * W);
+      if (self && ha == hb) {  // a self node (a pair node's homes differ)
+        const BvhNode& A = na[ha];
+        if (!A.is_leaf() && !(skip_root && skip_root[ha] >= 0)) {
+          ++bv_tests;
+          if (bva[A.left].overlaps(bva[A.right])) push(home_a[A.left], home_a[A.right], slot_a[A.left], slot_a[A.right]);
+          push(A.right, A.right, -1, -1);
+          ha = hb = A.left;
+          continue;
+        }
+      } else {
+        // Each side's record and the lanes that stand for it: all of an inner side's, a leaf's home lane only.
+        const Index ra = wa >= 0 ? wa : ha / W, rb = wb >= 0 ? wb : hb / W;
+        const unsigned row_lanes = wa >= 0 ? (1u << used_lanes(wide_a[ra])) - 1 : 1u << (ha % W);
+        const unsigned col_lanes = wb >= 0 ? (1u << used_lanes(wide_b[rb])) - 1 : 1u << (hb % W);
+        const WideBounds<BV>& A = wide_a[ra];
+        const WideBounds<BV>& B = wide_b[rb];
+        bv_tests += unsigned(std::popcount(row_lanes) * std::popcount(col_lanes));
+        const unsigned hit = overlapping_lane_pairs(A, B) & lane_rows_mask(row_lanes) & (col_lanes * 0x1111u);
+        // Each lane pair's slots; a slot < 0 is a leaf (~face).
+        const __m512i sa = _mm512_permutexvar_epi32(rows, _mm512_castsi128_si512(load4(A.lanes.slot.data())));
+        const __m512i sb = _mm512_broadcast_i32x4(load4(B.lanes.slot.data()));
+        const unsigned leaves = _mm512_movepi32_mask(sa) & _mm512_movepi32_mask(sb);
+        unsigned emit = hit & leaves;
+        const unsigned down = hit & ~leaves;
+        if (emit) {
+          const __m512i ones = _mm512_set1_epi32(-1);
+          const __m512i fa = _mm512_xor_si512(sa, ones), fb = _mm512_xor_si512(sb, ones);  // ~slot = face
+          __m512i first = fa, second = fb;
+          if (self) {  // TriMesh::faces_adjacent on 16 lane pairs; candidates ordered (min, max)
+            __mmask16 adjacent = 0;
+            for (int p = 0; p < 3; ++p) {
+              const __m512i va = _mm512_permutexvar_epi32(rows, _mm512_castsi128_si512(load4(A.lanes.vert[p].data())));
+              for (int q = 0; q < 3; ++q)
+                adjacent |= _mm512_cmpeq_epi32_mask(va, _mm512_broadcast_i32x4(load4(B.lanes.vert[q].data())));
+            }
+            emit &= ~unsigned(adjacent);
+            first = _mm512_min_epi32(fa, fb), second = _mm512_max_epi32(fa, fb);
+          }
+          if (pout + W * W > pend) [[unlikely]] {
+            emitted = std::size_t(pout - pairs.data());
+            pairs.resize(2 * pairs.size() + W * W);
+            pout = pairs.data() + emitted;
+            pend = pairs.data() + pairs.size();
+          }
+          const __m512i p0 = _mm512_permutex2var_epi32(first, pairs_0_7, second);
+          const __m512i p1 = _mm512_permutex2var_epi32(first, pairs_8_15, second);
+          _mm512_storeu_si512(pout, _mm512_maskz_compress_epi64(__mmask8(emit), p0));
+          pout += std::popcount(emit & 0xFFu);
+          _mm512_storeu_si512(pout, _mm512_maskz_compress_epi64(__mmask8(emit >> 8), p1));
+          pout += std::popcount(emit >> 8);
+        }
+        if (down) {
+          // The children: an inner side's lane is record · 4 + lane; a leaf side keeps its home (its slot is
+          // its lane's, already in sa / sb).
+          const __m512i ha16 = wa >= 0 ? _mm512_add_epi32(_mm512_set1_epi32(ra * W), rows) : _mm512_set1_epi32(ha);
+          const __m512i hb16 = wb >= 0 ? _mm512_add_epi32(_mm512_set1_epi32(rb * W), cols) : _mm512_set1_epi32(hb);
+          const __mmask16 m = __mmask16(down);
+          _mm512_storeu_si512(col_ha + top, _mm512_maskz_compress_epi32(m, ha16));
+          _mm512_storeu_si512(col_hb + top, _mm512_maskz_compress_epi32(m, hb16));
+          _mm512_storeu_si512(col_wa + top, _mm512_maskz_compress_epi32(m, sa));
+          _mm512_storeu_si512(col_wb + top, _mm512_maskz_compress_epi32(m, sb));
+          top += std::size_t(std::popcount(down));
+        }
+      }
+    }
+    if (top == 0) break;
+    --top;
+    ha = col_ha[top], hb = col_hb[top], wa = col_wa[top], wb = col_wb[top];
+    visit = true;
+  }
+  pairs.resize(std::size_t(pout - pairs.data()));
+  bv_tests_out += bv_tests;
+}
+#endif
+
+}  // namespace ccdlab
