@@ -114,7 +114,7 @@ WideLayout WideLayout::of(const BvhTopology& bvh, const std::vector<Face>& faces
     if (n.is_leaf()) continue;
     Lanes l;
     l.node.fill(-1);
-    l.slot.fill(-1);
+    l.slot.fill(kNoSlot);
     int k = 0;
     const auto add = [&](Index c) {
       l.node[k] = c;
@@ -134,7 +134,7 @@ WideLayout WideLayout::of(const BvhTopology& bvh, const std::vector<Face>& faces
   if (bvh.size() > 0) {
     Lanes top{};
     top.node.fill(-1);
-    top.slot.fill(-1);
+    top.slot.fill(kNoSlot);
     top.node[0] = 0;
     if (!bvh.nodes[0].is_leaf()) top.node[1] = bvh.nodes[0].left, top.node[2] = bvh.nodes[0].right;
     for (int j = 0; j < kWidth; ++j)

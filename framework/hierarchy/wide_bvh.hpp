@@ -29,14 +29,19 @@ inline constexpr int kDefaultBvhWidth = 4;
 
 struct WideLayout {
   static constexpr int kWidth = 4;
-  /// One wide node's lanes: node ids (−1 pads) and their slots (see `slot`), so a traversal that pushes a lane
-  /// knows where to continue, or which face it holds, without reading the binary node.
-  struct Lanes {
-    std::array<Index, kWidth> node;
+  /// The slot of an empty lane (a wide node of 2 or 3 lanes pads the rest).
+  static constexpr Index kNoSlot = std::numeric_limits<Index>::min();
+  /// What a traversal reads of a wide node's lanes, copied into its record (WideBounds): their slots (see
+  /// `slot`; kNoSlot pads), so a traversal that pushes a lane knows where to continue, or which face it holds,
+  /// without reading the binary node; and a leaf lane's face's vertices, vert[corner][lane] (the lane-pair walk
+  /// tests adjacency in SIMD; other lanes hold negative ids).
+  struct LaneIds {
     std::array<Index, kWidth> slot;
-    /// Leaf lanes: their face's vertices, vert[corner][lane] (the lane-pair walk tests adjacency in SIMD); other
-    /// lanes hold negative ids.
     std::array<std::array<Index, kWidth>, 3> vert;
+  };
+  /// One wide node's lanes: the above and their node ids (−1 pads), which only the refit reads.
+  struct Lanes : LaneIds {
+    std::array<Index, kWidth> node;
   };
   // The arrays are large (rod-twist: 7.7 MB) and cut on a run's first step: in huge pages (UninitializedVector).
   // In 4 KiB pages, their first touches made cutting rod-twist's layout take 68 ms instead of 4.
@@ -60,16 +65,17 @@ struct WideLayout {
 };
 
 /// One wide node as a traversal reads it: the lanes' bounds, lo[axis][lane] and hi[axis][lane], followed by a copy
-/// of their Lanes (node ids and slots), so that a visit touches one contiguous record (320 bytes at K = 18, five
-/// cache lines) besides the other side's k-DOP.
+/// of their LaneIds, so that a visit touches one contiguous record (352 bytes at K = 18, 5.5 cache lines). The
+/// node ids stay out: with them (384 bytes) n-body's lane-pair walk took 60 ms instead of 52.
 template <class BV>
-struct alignas(64) WideBounds {
+struct alignas(32) WideBounds {
   using Volume = BV;
   static constexpr int kAxes = BV::num_axes;
   float lo[kAxes][WideLayout::kWidth];
   float hi[kAxes][WideLayout::kWidth];
-  WideLayout::Lanes lanes;
+  WideLayout::LaneIds lanes;
 };
+static_assert(sizeof(WideBounds<KDop<18>>) == 352, "bounds and lane ids, no padding");
 
 /// Lane j of a record, read as a k-DOP: the other side of a wide visit (overlapping_lanes' query).
 template <class BV>
@@ -86,7 +92,7 @@ using WideBvs = UnconstructedVector<WideBounds<BV>>;  // large: in huge pages, n
 /// Copies the binary volumes of wide node w's lanes into its bounds (after the binary refit), and its lanes.
 template <class BV>
 void refit_wide_node(const WideLayout& layout, const BvArray<BV>& bvs, Index w, WideBounds<BV>& out) {
-  out.lanes = layout.lanes[w];
+  out.lanes = layout.lanes[w];  // the LaneIds
   for (int j = 0; j < WideLayout::kWidth; ++j) {
     const Index c = layout.lanes[w].node[j];
     for (int i = 0; i < BV::num_axes; ++i) {

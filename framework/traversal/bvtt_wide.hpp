@@ -37,7 +37,7 @@ constexpr unsigned lane_rows_mask(unsigned lanes) {
 template <class BV>
 int used_lanes(const WideBounds<BV>& r) {
   constexpr int W = WideLayout::kWidth;
-  return W - (r.lanes.node[W - 1] < 0) - (r.lanes.node[W - 2] < 0);
+  return W - (r.lanes.slot[W - 1] == WideLayout::kNoSlot) - (r.lanes.slot[W - 2] == WideLayout::kNoSlot);
 }
 
 /// Depth-first traversal over the 4-wide view: a pair node's larger side opens all its lanes at once and only

@@ -59,6 +59,8 @@ TEST(WideBvh, LanesAreTheGrandchildren) {
       EXPECT_EQ(l.node[j], j < expected.size() ? expected[j] : -1) << "node " << i << " lane " << j;
       if (j < expected.size()) {
         EXPECT_EQ(l.slot[j], w.slot[l.node[j]]);
+      } else {
+        EXPECT_EQ(l.slot[j], WideLayout::kNoSlot) << "an empty lane's slot is no face's";
       }
       // A leaf lane carries its face's vertex ids (the lane-pair walk's adjacency test); others negative ids.
       for (std::size_t p = 0; p < 3; ++p) {
