@@ -1,7 +1,8 @@
 // Micro-benchmarks of the sequential pipeline's phases, per K, on one step of the built-in drape_fold scene
 // (the step with the most candidates of the default run). Run: build/bin/ccdlab_microbench
 //   --benchmark_filter=Traverse   (or TraverseWidth, SweptBv, Refit, Step, FloatTester, Tester)
-// Google Benchmark interleaves nothing by itself: compare ratios within one invocation.
+// Google Benchmark interleaves nothing by itself: compare ratios within one invocation. CCDLAB_SIMD=avx2 (as for
+// the command line, docs/config.md) limits the kernels, e.g. to time width 4's SSE2 walk on an AVX-512 CPU.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "framework/narrow/plane_filter.hpp"
 #include "framework/traversal/bvtt.hpp"
 #include "framework/scene/mesh_sequence.hpp"
 #include "strategies/registry.hpp"
@@ -214,4 +216,11 @@ BENCHMARK(BM_TesterHardCases)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 }  // namespace
 }  // namespace ccdlab
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  if (const char* simd = std::getenv("CCDLAB_SIMD")) ccdlab::limit_simd_target(simd);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
