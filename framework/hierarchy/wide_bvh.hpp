@@ -21,10 +21,9 @@
 
 namespace ccdlab {
 
-/// bv.width when a config does not say: the 4-wide view. On a CPU with AVX-512 its lane-pair walk makes a BV test
-/// 2.1–2.6× cheaper than the binary walk's and the steady-state step 1.2–1.3× faster (rod-twist, n-body; docs/wide-bvh.md).
-/// Elsewhere its SSE2 walk costs about what the binary walk does (within ±10% inside a step); `bv.width: 2` is the
-/// binary BVTT.
+/// bv.width when a config does not say: the 4-wide view. On a CPU with AVX-512 its lane-pair walk makes the traversal
+/// 2.2–3.2× faster than the binary walk and the steady-state step at two threads 1.07–1.36× (docs/wide-bvh.md).
+/// Elsewhere its SSE2 walk costs about what the binary walk does; `bv.width: 2` is the binary BVTT.
 inline constexpr int kDefaultBvhWidth = 4;
 
 struct WideLayout {
@@ -66,7 +65,7 @@ struct WideLayout {
 
 /// One wide node as a traversal reads it: the lanes' bounds, lo[axis][lane] and hi[axis][lane], followed by a copy
 /// of their LaneIds, so that a visit touches one contiguous record (352 bytes at K = 18, 5.5 cache lines). The
-/// node ids stay out: with them (384 bytes) n-body's lane-pair walk took 60 ms instead of 52.
+/// node ids, which only the refit reads, stay in the layout.
 template <class BV>
 struct alignas(32) WideBounds {
   using Volume = BV;
