@@ -187,7 +187,8 @@ class LanePairStack {
     std::size_t cap = std::max<std::size_t>(256, cap_);
     while (cap < n) cap *= 2;
     std::vector<Index> grown(4 * (cap + kSlack));
-    for (int c = 0; c < 4; ++c) std::copy_n(column(c), used, grown.data() + std::size_t(c) * (cap + kSlack));
+    if (used > 0)  // (an empty buffer's data() is null: no column to copy, nor to point into)
+      for (int c = 0; c < 4; ++c) std::copy_n(column(c), used, grown.data() + std::size_t(c) * (cap + kSlack));
     buf_.swap(grown);
     cap_ = cap;
   }
