@@ -202,7 +202,7 @@ class LanePairStack {
 /// Depth-first traversal over the 4-wide view in AVX-512 (call only where lane_pairs_walk_available()). A pair
 /// node opens both sides at once: an inner side's record, or, for a leaf, the record that holds it (its home)
 /// restricted to that lane. One overlapping_lane_pairs gives the 16 lane pairs' answers; the pairs of two leaves
-/// are written as candidates (adjacency tested in SIMD on the lanes' vertex ids, WideLayout::Lanes::vert) and the
+/// are written as candidates (adjacency tested in SIMD on the lanes' vertex ids, WideLayout::LaneIds::vert) and the
 /// others pushed, each with one compress per 16 lanes — no branch on any answer, which is what made the other
 /// walks pay ~11 ns per BV test (docs/wide-bvh.md). Self nodes open into (L, L), (R, R), (L, R) as in the binary
 /// BVTT, so normal-cone skips apply unchanged. Same candidates as the binary walk (wide_bvh.hpp), in another
