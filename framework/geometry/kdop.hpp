@@ -105,6 +105,14 @@ class KDop {
     max_.fill(-std::numeric_limits<float>::infinity());
   }
 
+  /// The k-DOP with these bounds per axis (already rounded outward by whoever computed them).
+  static KDop from_bounds(const std::array<float, num_axes>& mins, const std::array<float, num_axes>& maxs) {
+    KDop d;
+    d.min_ = mins;
+    d.max_ = maxs;
+    return d;
+  }
+
   /// Grows the k-DOP to contain point p (conservatively, see header).
   void grow(const Vec3& p) {
     for (int i = 0; i < num_axes; ++i) {
@@ -199,17 +207,6 @@ class KDop {
   std::array<float, num_axes> min_;
   std::array<float, num_axes> max_;
 };
-
-/// The swept k-DOP of a triangle over one step: its 3 vertices at t0 and at t1. Under linear motion every
-/// point of the moving triangle stays in the convex hull of these 6 points, hence inside the k-DOP.
-template <class BV>
-BV swept_triangle_bv(const Vec3& a0, const Vec3& b0, const Vec3& c0, const Vec3& a1, const Vec3& b1,
-                     const Vec3& c1, double thickness) {
-  BV bv;
-  bv.grow(std::array<const Vec3*, 6>{&a0, &b0, &c0, &a1, &b1, &c1});
-  bv.inflate(thickness);
-  return bv;
-}
 
 /// What a bounding volume must offer the hierarchy and the traversal.
 template <class BV>

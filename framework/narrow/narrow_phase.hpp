@@ -48,6 +48,9 @@ class NarrowPhase {
   /// Sets the two frames of the step and bounds every feature over it (stage 1's 26-DOPs).
   void begin_step(const Positions& x_t0, const Positions& x_t1, int threads, PhaseTrace& trace);
 
+  /// Every vertex's swept 26-DOP over the step (begin_step); the hierarchy's leaves are cut from them too.
+  [[nodiscard]] const FeatureBounds& bounds() const { return bounds_; }
+
   /// Appends the feature pairs the candidates represent to `batch`.
   void gather(std::span<const FacePair> candidates, FeatureBatch& batch) const;
   /// Appends a piece of the orphan set to an empty `batch`. Batched mode runs stage 1's coarse test here, on the

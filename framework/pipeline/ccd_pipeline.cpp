@@ -19,17 +19,13 @@ constexpr std::size_t kOrphanChunk = 8192;   // 2048 before: rod-twist's orphans
                                               // (2 threads); per-chunk costs, now that a pair's stage 1 is ~2.5 ns
 constexpr std::size_t kFaceChunk = 2048;
 
-/// The swept k-DOP of face f over the step: its 3 vertices at t0 and at t1, inflated by the thickness.
+/// The swept k-DOP of face f over the step: the union of its vertices' swept 26-DOPs, inflated by half the
+/// thickness (FeatureBounds::face_dop: the one definition, shared with the narrow phase's stage 1).
 template <class BV>
 struct SweptFaceBv {
   const TriMesh& mesh;
-  const Positions& x0;
-  const Positions& x1;
-  double thickness;
-  BV operator()(Index f) const {
-    const Face& t = mesh.face(f);
-    return swept_triangle_bv<BV>(x0[t[0]], x0[t[1]], x0[t[2]], x1[t[0]], x1[t[1]], x1[t[2]], thickness);
-  }
+  const FeatureBounds& bounds;
+  BV operator()(Index f) const { return bounds.face_dop<BV::k>(mesh.face(f)); }
 };
 
 }  // namespace
@@ -57,11 +53,13 @@ AnyBvs make_bvs(int k) {
 void compute_face_bvs(const TriMesh& mesh, const Positions& x0, const Positions& x1, double thickness, AnyBvs& out,
                       int threads, PhaseTrace* trace) {
   PhaseTrace unused;
+  FeatureBounds vertex_dops;
+  vertex_dops.update(x0, x1, thickness, threads, trace ? *trace : unused);
   std::visit(
       [&](auto& bvs) {
         using BV = typename std::decay_t<decltype(bvs)>::value_type;
         bvs.resize(mesh.num_faces());
-        const SweptFaceBv<BV> swept{mesh, x0, x1, thickness};
+        const SweptFaceBv<BV> swept{mesh, vertex_dops};
         parallel_chunks(std::size_t(mesh.num_faces()), kFaceChunk, threads, trace ? *trace : unused,
                         [&](std::size_t b, std::size_t e, int) {
                           for (std::size_t f = b; f < e; ++f) bvs[f] = swept(Index(f));
@@ -231,7 +229,7 @@ std::uint64_t CcdPipeline::restructure(const Positions& x_t0, const Positions& x
             // A new topology version: the refit plan, normal cones and fronts are cut again from it.
             replace_subtree(bvh, r, replacement[u]);
             // Its leaves now hold other faces: their swept volumes are computed again.
-            refit_subtree(bvh, node_bvs, r, SweptFaceBv<BV>{mesh_, x_t0, x_t1, strategies_.tester->thickness()});
+            refit_subtree(bvh, node_bvs, r, SweptFaceBv<BV>{mesh_, narrow_.bounds()});
             for (Index p = bvh.nodes[r].parent; p >= 0; p = bvh.nodes[p].parent)
               refit_node(bvh, node_bvs, p, LeavesInPlace{});
             body.quality_ref[u] = subtree_quality(bvh, node_bvs, r);
@@ -244,13 +242,13 @@ std::uint64_t CcdPipeline::restructure(const Positions& x_t0, const Positions& x
   return rebuilt;
 }
 
-void CcdPipeline::sweep_leaves(BodyState& body, const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace) {
+void CcdPipeline::sweep_leaves(BodyState& body, PhaseTrace& trace) {
   std::visit(
       [&](auto& node_bvs) {
         using BV = typename std::decay_t<decltype(node_bvs)>::value_type;
         const BvhTopology& bvh = body.bvh;
         node_bvs.resize(bvh.nodes.size());  // uninitialised: this pass touches every page first, in parallel
-        const SweptFaceBv<BV> swept{mesh_, x_t0, x_t1, strategies_.tester->thickness()};
+        const SweptFaceBv<BV> swept{mesh_, narrow_.bounds()};
         parallel_chunks(bvh.nodes.size(), 2 * kFaceChunk, strategies_.threads, trace,
                         [&](std::size_t b, std::size_t e, int) {
                           for (std::size_t i = b; i < e; ++i)
@@ -372,9 +370,13 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
     result.traces.push_back(std::move(build));
   }
 
+  // Swept volumes: every vertex's 26-DOP (the narrow phase's stage 1 bounds), then the leaves from them.
   t = Clock::now();
+  PhaseTrace boxes{"feature_bounds", Distribution::dynamic, 0, {}, {}};
+  narrow_.begin_step(x_t0, x_t1, threads, boxes);
+  result.traces.push_back(std::move(boxes));
   PhaseTrace swept{"swept_bv", Distribution::dynamic, 0, {}, {}};
-  for (BodyState& body : bodies_) sweep_leaves(body, x_t0, x_t1, swept);
+  for (BodyState& body : bodies_) sweep_leaves(body, swept);
   result.traces.push_back(std::move(swept));
   tm.swept_bv_ms = ms_since(t);
 
@@ -427,12 +429,6 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
     result.traces.push_back(std::move(cone_trace));
     if (cones_build_ms > 0) result.traces.push_back(PhaseTrace{"build", Distribution::dynamic, cones_build_ms, {}, {}});
   }
-
-  t = Clock::now();
-  PhaseTrace boxes{"feature_bounds", Distribution::dynamic, 0, {}, {}};
-  narrow_.begin_step(x_t0, x_t1, threads, boxes);  // swept 26-DOP of every vertex
-  result.traces.push_back(std::move(boxes));
-  tm.narrow_ms = ms_since(t);
 
   // A memory-bounded step keeps no candidates from the step before: their pages would count as resident.
   if (budget_.limit() > 0) candidates_.pairs.release();

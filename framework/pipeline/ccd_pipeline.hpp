@@ -97,7 +97,7 @@ class CcdPipeline {
   std::uint64_t restructure(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
   void build_hierarchies(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
   /// The swept volume of every face, written into its leaf of the body's node volumes.
-  void sweep_leaves(BodyState& body, const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
+  void sweep_leaves(BodyState& body, PhaseTrace& trace);
   /// The inner nodes' volumes, bottom-up from the leaves that sweep_leaves wrote.
   void refit_body(BodyState& body, PhaseTrace& trace);
   void refit_wide(BodyState& body, PhaseTrace& trace);

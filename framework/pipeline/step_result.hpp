@@ -21,7 +21,7 @@ struct StepCounters : NarrowCounters {
 /// Wall-clock milliseconds per phase of one step (data flow of design.md).
 struct StepTimings {
   double build_ms = 0;      ///< top-down BVH build: first step only, 0 afterwards
-  double swept_bv_ms = 0;   ///< swept k-DOP of every face (written into the BVH leaves)
+  double swept_bv_ms = 0;   ///< swept 26-DOP of every vertex (shared with the narrow phase), then every leaf's k-DOP
   double refit_ms = 0;      ///< bottom-up refit (and adaptive restructuring, when on)
   double cones_ms = 0;      ///< normal-cone culling: cones, contour tests (when on)
   double traverse_ms = 0;   ///< BVTT traversal → candidate face pairs

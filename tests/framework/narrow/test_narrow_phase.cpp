@@ -315,6 +315,56 @@ TEST(PlaneFilter, SimdStagingWritesThePlainRowsOnEveryTarget) {
   });
 }
 
+/// face_dop<K> for one moving triangle: holds every point of the motion padded by r = thickness / 2 along each
+/// axis, and lies inside the k-DOP grown from the 6 points with the same padding (per-vertex rounding is tighter).
+template <int K>
+void check_face_dop(double scale, double offset, double thickness, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  const TriMesh mesh(3, {Face{0, 1, 2}});
+  Positions x0(3), x1(3);
+  for (Vec3& q : x0) q = offset * Vec3::Ones() + scale * Vec3(u(rng), u(rng), u(rng));
+  for (Vec3& q : x1) q = offset * Vec3::Ones() + scale * Vec3(u(rng), u(rng), u(rng));
+  for_each_simd_target([&](const char* target) {
+    FeatureBounds bounds;
+    PhaseTrace trace;
+    bounds.update(x0, x1, thickness, 1, trace);
+    const KDop<K> leaf = bounds.face_dop<K>(mesh.face(0));
+    KDop<K> six;
+    six.grow(std::array<const Vec3*, 6>{&x0[0], &x0[1], &x0[2], &x1[0], &x1[1], &x1[2]});
+    six.inflate(0.5 * thickness);
+    for (int i = 0; i < K / 2; ++i) {
+      ASSERT_GE(leaf.min(i), six.min(i)) << "K=" << K << " axis " << i << " " << target;
+      ASSERT_LE(leaf.max(i), six.max(i)) << "K=" << K << " axis " << i << " " << target;
+    }
+    for (int s = 0; s <= 10; ++s) {
+      const double t = s / 10.0, w1 = 0.5 * (u(rng) + 1), w2 = (1 - w1) * 0.5 * (u(rng) + 1);
+      const Vec3 a = (1 - t) * x0[0] + t * x1[0], b = (1 - t) * x0[1] + t * x1[1], c = (1 - t) * x0[2] + t * x1[2];
+      const Vec3 q = (1 - w1 - w2) * a + w1 * b + w2 * c;
+      for (int i = 0; i < K / 2; ++i) {
+        const auto& d = KDop<K>::axes[std::size_t(i)];
+        const Vec3 dir(d[0], d[1], d[2]);
+        // q and its projection carry a few roundings of double: 1e-14 relative covers them.
+        const double proj = dir.dot(q), pad = 0.5 * thickness * dir.norm(), slack = 1e-14 * (std::abs(proj) + pad);
+        ASSERT_LE(double(leaf.min(i)), proj - pad + slack) << "K=" << K << " t=" << t;
+        ASSERT_GE(double(leaf.max(i)), proj + pad - slack) << "K=" << K << " t=" << t;
+      }
+    }
+  });
+}
+
+TEST(FeatureBounds, FaceDopHoldsTheMotionAndLiesInsideTheSixPointDop) {
+  std::mt19937 rng(11);
+  for (double scale : {1e-6, 1.0, 1e6})
+    for (double offset : {0.0, 1e3, -1e7})
+      for (double thickness : {0.0, 1e-3 * scale})
+        for (int trial = 0; trial < 20; ++trial) {
+          check_face_dop<6>(scale, offset, thickness, rng);
+          check_face_dop<14>(scale, offset, thickness, rng);
+          check_face_dop<18>(scale, offset, thickness, rng);
+          check_face_dop<26>(scale, offset, thickness, rng);
+        }
+}
+
 TEST(FeatureBounds, SimdKeepAgreesWithThePlainVersionOnEveryTarget) {
   MeshData g = test::grid(12, 12);
   TriMesh mesh(Index(g.positions.size()), g.faces);
