@@ -196,6 +196,9 @@ class KDop {
   [[nodiscard]] float size_measure() const { return (max_[0] - min_[0]) + (max_[1] - min_[1]) + (max_[2] - min_[2]); }
   [[nodiscard]] float min(int i) const { return min_[i]; }
   [[nodiscard]] float max(int i) const { return max_[i]; }
+  /// The bounds as arrays of num_axes floats (SIMD copies).
+  [[nodiscard]] const float* mins() const { return min_.data(); }
+  [[nodiscard]] const float* maxs() const { return max_.data(); }
 
  private:
   /// d_i · p for every axis, unrolled with the axis entries as constants (0 and ±1 fold away).

@@ -19,6 +19,10 @@
 #include "framework/hierarchy/bvh.hpp"
 #include "framework/util/uninitialized_vector.hpp"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace ccdlab {
 
 /// bv.width when a config does not say: the 4-wide view. On a CPU with AVX-512 its lane-pair walk makes the traversal
@@ -88,17 +92,35 @@ struct WideLane {
 template <class BV>
 using WideBvs = UnconstructedVector<WideBounds<BV>>;  // large: in huge pages, not value-initialized
 
-/// Copies the binary volumes of wide node w's lanes into its bounds (after the binary refit), and its lanes.
+/// Copies the binary volumes of wide node w's lanes into its bounds, once they are refit. (Its LaneIds change
+/// only with the topology: the refit copies them when it cuts the layout.) Empty lanes take the empty k-DOP.
 template <class BV>
-void refit_wide_node(const WideLayout& layout, const BvArray<BV>& bvs, Index w, WideBounds<BV>& out) {
-  out.lanes = layout.lanes[w];  // the LaneIds
+void refit_wide_bounds(const WideLayout& layout, const BvArray<BV>& bvs, Index w, WideBounds<BV>& out) {
+  static const BV empty;
+  const BV* lane[WideLayout::kWidth];
   for (int j = 0; j < WideLayout::kWidth; ++j) {
     const Index c = layout.lanes[w].node[j];
-    for (int i = 0; i < BV::num_axes; ++i) {
-      out.lo[i][j] = c >= 0 ? bvs[c].min(i) : std::numeric_limits<float>::infinity();
-      out.hi[i][j] = c >= 0 ? bvs[c].max(i) : -std::numeric_limits<float>::infinity();
-    }
+    lane[j] = c >= 0 ? &bvs[c] : &empty;
   }
+  int i = 0;
+#if defined(__SSE2__)
+  // Four axes × four lanes per 4 × 4 transpose: a branch-free copy, scalar only for the last num_axes % 4.
+  for (; i + 4 <= BV::num_axes; i += 4) {
+    const auto transpose = [&](auto bound, float (*dst)[WideLayout::kWidth]) {
+      __m128 r0 = _mm_loadu_ps(bound(*lane[0]) + i), r1 = _mm_loadu_ps(bound(*lane[1]) + i),
+             r2 = _mm_loadu_ps(bound(*lane[2]) + i), r3 = _mm_loadu_ps(bound(*lane[3]) + i);
+      _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+      _mm_storeu_ps(dst[i], r0), _mm_storeu_ps(dst[i + 1], r1), _mm_storeu_ps(dst[i + 2], r2), _mm_storeu_ps(dst[i + 3], r3);
+    };
+    transpose([](const BV& v) { return v.mins(); }, out.lo);
+    transpose([](const BV& v) { return v.maxs(); }, out.hi);
+  }
+#endif
+  for (; i < BV::num_axes; ++i)
+    for (int j = 0; j < WideLayout::kWidth; ++j) {
+      out.lo[i][j] = lane[j]->min(i);
+      out.hi[i][j] = lane[j]->max(i);
+    }
 }
 
 }  // namespace ccdlab

@@ -96,10 +96,10 @@ class CcdPipeline {
   /// Rebuilds the degraded sub-trees of every body; returns how many were rebuilt.
   std::uint64_t restructure(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
   void build_hierarchies(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
-  /// The swept volume of every face, written into its leaf of the body's node volumes.
-  void sweep_leaves(BodyState& body, PhaseTrace& trace);
-  /// The inner nodes' volumes, bottom-up from the leaves that sweep_leaves wrote.
+  /// Every leaf's swept k-DOP (from its vertices' 26-DOPs), then every inner node's, bottom-up (refit plan).
   void refit_body(BodyState& body, PhaseTrace& trace);
+  /// Every wide record's bounds, from the binary volumes; cuts the layout again (and copies the records' lanes)
+  /// when the topology changed.
   void refit_wide(BodyState& body, PhaseTrace& trace);
   /// BVTT traversal of every pass and the narrow phase of its candidates: at once, or slice by slice when the
   /// memory plan streams.
