@@ -249,8 +249,8 @@ void CcdPipeline::refit_body(BodyState& body, PhaseTrace& trace) {
         using BV = typename std::decay_t<decltype(node_bvs)>::value_type;
         node_bvs.resize(bvh.nodes.size());  // uninitialised: the leaves' pass touches every page first, in parallel
         // The leaves first, in node order: their faces and vertex 26-DOPs are scattered reads, which the CPU
-        // overlaps across independent iterations. (Fused into the bottom-up sweep below, rod-twist's refit took
-        // 2 ms longer a step, prefetching or not.)
+        // overlaps across independent iterations. (Leaves, inner nodes and wide records fused into the bottom-up
+        // sweep below measured 1.00× against 1.15× for separate passes: docs/pipeline.md, section 2.)
         const SweptFaceBv<BV> swept{mesh_, narrow_.bounds()};
         parallel_chunks(bvh.nodes.size(), 2 * kFaceChunk, strategies_.threads, trace, [&](std::size_t b, std::size_t e, int) {
           for (std::size_t i = b; i < e; ++i)

@@ -140,7 +140,7 @@ std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std
 AnyBvs make_bvs(int k);
 AnyWideBvs make_wide_bvs(int k);
 
-/// Swept k-DOP of every face of the mesh over the step (inflated by thickness), on `threads` threads; the
+/// Swept k-DOP of every face of the mesh over the step (inflated by thickness / 2), on `threads` threads; the
 /// task costs go to `trace` when given. The pipeline writes these volumes into its BVH leaves instead; this
 /// face-indexed array is for references (brute force) and benchmarks.
 void compute_face_bvs(const TriMesh& mesh, const Positions& x_t0, const Positions& x_t1, double thickness, AnyBvs& out,
