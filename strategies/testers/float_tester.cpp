@@ -56,25 +56,26 @@ double extent(const std::array<const Vec3*, N>& pts) {
   return b.extent().norm();
 }
 
-/// Candidate times of contact: t = 0, t = 1, the roots of f(t) = A(t)·(B(t)×C(t)) in [0, 1], and values
-/// of t where f touches zero at a critical point. f is evaluated from the positions at t (not from the
-/// expanded coefficients), which is more accurate near the roots.
-template <class F>
-void coplanarity_times(const Moving& A, const Moving& B, const Moving& C, F&& f, double f_scale, bool thick,
-                       TimeList& times, bool& degenerate) {
+/// The candidate times of contact in increasing order, each offered to `hit(t)` until one returns true; returns
+/// whether one did. The candidates: t = 0 and t = 1 with thickness, the roots of f(t) = A(t)·(B(t)×C(t)) in
+/// [0, 1], and values of t where f touches zero at a critical point. f is evaluated from the positions at t (not
+/// from the expanded coefficients), which is more accurate near the roots. A root is refined only once every
+/// earlier candidate has missed: the roots after a contact cost nothing (the refinement is nearly all of this
+/// tester's time; the first hit, hence the answer, is the one the full sorted list gives).
+/// When f ≡ 0 (coplanar motion), sets `degenerate` and offers nothing: the caller looks for crossings instead.
+template <class F, class Hit>
+bool earliest_hit(const Moving& A, const Moving& B, const Moving& C, F&& f, double f_scale, bool thick,
+                  bool& degenerate, Hit&& hit) {
   const Vec3 &A0 = A.x0, &dA = A.dx, &B0 = B.x0, &dB = B.dx, &C0 = C.x0, &dC = C.dx;
   const double d = A0.dot(B0.cross(C0));
   const double c = dA.dot(B0.cross(C0)) + A0.dot(dB.cross(C0)) + A0.dot(B0.cross(dC));
   const double b = dA.dot(dB.cross(C0)) + dA.dot(B0.cross(dC)) + A0.dot(dB.cross(dC));
   const double a = dA.dot(dB.cross(dC));
   degenerate = std::max({std::abs(a), std::abs(b), std::abs(c), std::abs(d)}) <= 1e-12 * f_scale;
+  if (degenerate) return false;
   // With thickness, contact needs no coplanarity: the ends of the step are always candidates. Without it, they
   // are candidates only when (nearly) coplanar, which the breakpoint check below finds.
-  if (thick || degenerate) {
-    times.push_back(0);
-    times.push_back(1);
-  }
-  if (degenerate) return;
+  if (thick && hit(0.0)) return true;
   const double zero = FloatTester::rel_tolerance * f_scale;  // |f| ≈ distance × area: within the tolerance
   if (!thick) {
     // Early out: on [0, 1], f is a convex combination of its Bernstein coefficients, so when all four lie
@@ -82,7 +83,7 @@ void coplanarity_times(const Moving& A, const Moving& B, const Moving& C, F&& f,
     // would reach (rounding of the coefficients is ~1e-15·f_scale, far inside `zero`).
     const double b0 = d, b1 = d + c / 3, b2 = d + (2 * c + b) / 3, b3 = d + c + b + a;
     if ((b0 > zero && b1 > zero && b2 > zero && b3 > zero) || (b0 < -zero && b1 < -zero && b2 < -zero && b3 < -zero))
-      return;
+      return false;
   }
   TimeList breaks;
   breaks.push_back(0);
@@ -90,11 +91,12 @@ void coplanarity_times(const Moving& A, const Moving& B, const Moving& C, F&& f,
   quadratic_roots(3 * a, 2 * b, c, breaks);
   std::sort(breaks.begin(), breaks.end());
   std::array<double, 4> values;
+  for (std::size_t i = 0; i < breaks.size(); ++i) values[i] = f(breaks[i]);
+  // In increasing order: each breakpoint where f touches zero (a double root), then the root f has between it
+  // and the next one (f is monotone there).
   for (std::size_t i = 0; i < breaks.size(); ++i) {
-    values[i] = f(breaks[i]);
-    if (std::abs(values[i]) <= zero) times.push_back(breaks[i]);  // touching (double) root
-  }
-  for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+    if (std::abs(values[i]) <= zero && hit(breaks[i])) return true;
+    if (i + 1 == breaks.size()) break;
     double lo = breaks[i], hi = breaks[i + 1], flo = values[i], fhi = values[i + 1];
     if (!((flo < 0 && fhi > 0) || (flo > 0 && fhi < 0))) continue;
     // Illinois false position: monotone on [lo, hi], one root.
@@ -115,8 +117,9 @@ void coplanarity_times(const Moving& A, const Moving& B, const Moving& C, F&& f,
         side = 1;
       }
     }
-    times.push_back(0.5 * (lo + hi));
+    if (hit(0.5 * (lo + hi))) return true;
   }
+  return thick && hit(1.0);
 }
 
 /// Coplanar motion: times where point p crosses the line (a, b), from the in-plane component along n.
@@ -127,6 +130,19 @@ void crossing_times(const Moving& p, const Moving& a, const Moving& b, const Vec
   const double bq = n.dot(dr.cross(e0) + r0.cross(de));
   const double aq = n.dot(dr.cross(de));
   quadratic_roots(aq, bq, c, times);
+}
+
+/// Coplanar motion (f ≡ 0): the ends of the step and the times `crossings` adds (where a point crosses a line
+/// in the plane), offered to `hit(t)` in increasing order until one returns true.
+template <class Crossings, class Hit>
+void offer_coplanar_times(Crossings&& crossings, Hit&& hit) {
+  TimeList times;
+  times.push_back(0);
+  times.push_back(1);
+  crossings(times);
+  std::sort(times.begin(), times.end());
+  for (double t : times)
+    if (hit(t)) return;
 }
 
 /// The most reliable normal of the plane holding these points (largest cross product of differences).
@@ -154,24 +170,24 @@ CcdHit FloatTester::vertex_face(const VertexFaceQuery& q) const {
       f1{q.f1_t0 - o, q.f1_t1 - q.f1_t0}, f2{q.f2_t0 - o, q.f2_t1 - q.f2_t0};
   const Moving A{v.x0 - f0.x0, v.dx - f0.dx}, B{f1.x0 - f0.x0, f1.dx - f0.dx}, C{f2.x0 - f0.x0, f2.dx - f0.dx};
   auto f = [&](double t) { return A.at(t).dot(B.at(t).cross(C.at(t))); };
-  TimeList times;
+  const double reach = params_.thickness + rel_tolerance * L;
+  CcdHit out;
+  const auto hit = [&](double t) {
+    auto c = closest_point_triangle(v.at(t), f0.at(t), f1.at(t), f2.at(t));
+    if (c.distance_sq <= reach * reach) out = {true, t, {c.bary[1], c.bary[2]}};
+    return out.hit;
+  };
   bool degenerate = false;
-  coplanarity_times(A, B, C, f, L * L * L, params_.thickness > 0, times, degenerate);
-  if (degenerate) {
+  if (earliest_hit(A, B, C, f, L * L * L, params_.thickness > 0, degenerate, hit) || !degenerate) return out;
+  offer_coplanar_times([&](TimeList& times) {  // where the vertex crosses an edge's line
     for (double t : {0.0, 1.0}) {
       Vec3 n = plane_normal({v.at(t), f0.at(t), f1.at(t), f2.at(t)});
       crossing_times(v, f0, f1, n, times);
       crossing_times(v, f1, f2, n, times);
       crossing_times(v, f2, f0, n, times);
     }
-  }
-  std::sort(times.begin(), times.end());
-  const double reach = params_.thickness + rel_tolerance * L;
-  for (double t : times) {
-    auto c = closest_point_triangle(v.at(t), f0.at(t), f1.at(t), f2.at(t));
-    if (c.distance_sq <= reach * reach) return {true, t, {c.bary[1], c.bary[2]}};
-  }
-  return {};
+  }, hit);
+  return out;
 }
 
 CcdHit FloatTester::edge_edge(const EdgeEdgeQuery& q) const {
@@ -182,10 +198,16 @@ CcdHit FloatTester::edge_edge(const EdgeEdgeQuery& q) const {
       b0{q.eb0_t0 - o, q.eb0_t1 - q.eb0_t0}, b1{q.eb1_t0 - o, q.eb1_t1 - q.eb1_t0};
   const Moving A{b0.x0 - a0.x0, b0.dx - a0.dx}, B{a1.x0 - a0.x0, a1.dx - a0.dx}, C{b1.x0 - b0.x0, b1.dx - b0.dx};
   auto f = [&](double t) { return A.at(t).dot(B.at(t).cross(C.at(t))); };
-  TimeList times;
+  const double reach = params_.thickness + rel_tolerance * L;
+  CcdHit out;
+  const auto hit = [&](double t) {
+    auto c = closest_segment_segment(a0.at(t), a1.at(t), b0.at(t), b1.at(t));
+    if (c.distance_sq <= reach * reach) out = {true, t, {c.s, c.t}};
+    return out.hit;
+  };
   bool degenerate = false;
-  coplanarity_times(A, B, C, f, L * L * L, params_.thickness > 0, times, degenerate);
-  if (degenerate) {
+  if (earliest_hit(A, B, C, f, L * L * L, params_.thickness > 0, degenerate, hit) || !degenerate) return out;
+  offer_coplanar_times([&](TimeList& times) {  // where an endpoint crosses the other edge's line
     for (double t : {0.0, 1.0}) {
       Vec3 n = plane_normal({a0.at(t), a1.at(t), b0.at(t), b1.at(t)});
       crossing_times(a0, b0, b1, n, times);
@@ -193,14 +215,8 @@ CcdHit FloatTester::edge_edge(const EdgeEdgeQuery& q) const {
       crossing_times(b0, a0, a1, n, times);
       crossing_times(b1, a0, a1, n, times);
     }
-  }
-  std::sort(times.begin(), times.end());
-  const double reach = params_.thickness + rel_tolerance * L;
-  for (double t : times) {
-    auto c = closest_segment_segment(a0.at(t), a1.at(t), b0.at(t), b1.at(t));
-    if (c.distance_sq <= reach * reach) return {true, t, {c.s, c.t}};
-  }
-  return {};
+  }, hit);
+  return out;
 }
 
 }  // namespace ccdlab
