@@ -205,7 +205,8 @@ class LanePairStack {
 /// are written as candidates (adjacency tested in SIMD on the lanes' vertex ids, WideLayout::LaneIds::vert) and the
 /// others pushed, each with one compress per 16 lanes — no branch on any answer, which is what made the other
 /// walks pay ~11 ns per BV test (docs/wide-bvh.md). Self nodes open into (L, L), (R, R), (L, R) as in the binary
-/// BVTT, so normal-cone skips apply unchanged. Same candidates as the binary walk (wide_bvh.hpp), in another
+/// BVTT, so normal-cone skips apply unchanged; (L, R) is pushed untested, since its visit tests L's lanes against
+/// R's anyway (the same candidates: a leaf pair under L × R overlaps only if L and R do). Same candidates as the binary walk (wide_bvh.hpp), in another
 /// order; a BV test is one lane pair of the restricted records.
 template <class BV>
 CCDLAB_AVX512_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode start, LanePairStack& stack,
@@ -260,8 +261,9 @@ CCDLAB_AVX512_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNo
       if (self && ha == hb) {  // a self node (a pair node's homes differ)
         const BvhNode& A = na[ha];
         if (!A.is_leaf() && !(skip_root && skip_root[ha] >= 0)) {
-          ++bv_tests;
-          if (bva[A.left].overlaps(bva[A.right])) push(home_a[A.left], home_a[A.right], slot_a[A.left], slot_a[A.right]);
+          // Testing L against R first kept out 4.4K of rod-twist's 80K (L, R) and read both from the binary
+          // array, away from the records: without it the walk is 1.08x faster (BM_TraverseWidth/4, docs/wide-bvh.md).
+          push(home_a[A.left], home_a[A.right], slot_a[A.left], slot_a[A.right]);
           push(A.right, A.right, -1, -1);
           ha = hb = A.left;
           continue;
