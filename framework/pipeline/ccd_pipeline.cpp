@@ -424,9 +424,16 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
     if (cones_build_ms > 0) result.traces.push_back(PhaseTrace{"build", Distribution::dynamic, cones_build_ms, {}, {}});
   }
 
-  // A memory-bounded step keeps no candidates from the step before: their pages would count as resident.
-  if (budget_.limit() > 0) candidates_.pairs.release();
-  const MemoryPlan plan = budget_.plan(budget_.limit() > 0 ? current_rss_bytes() : 0, std::size_t(mesh_.num_faces()));
+  // The step before's candidate pages are kept for this step's candidates while the step fits with them resident
+  // (MemoryBudget::fits). Freeing them at every step made each step fault and zero them again: rod-twist's
+  // traversal at 2 threads 1.11x slower (docs/reliability.md, "Memory").
+  const std::size_t faces = std::size_t(mesh_.num_faces());
+  std::uint64_t resident = budget_.limit() > 0 ? current_rss_bytes() : 0;
+  if (!budget_.fits(resident, faces)) {
+    candidates_.pairs.release();
+    if (budget_.limit() > 0) resident = current_rss_bytes();
+  }
+  const MemoryPlan plan = budget_.plan(resident, faces);
   traverse_and_test(plan, result);
   budget_.record(c.candidate_pairs, result.traversal.front_bytes);
   result.memory.limit_bytes = budget_.limit();

@@ -44,10 +44,18 @@ class MemoryBudget {
   /// The plan of a step over `faces` triangles whose traversal starts with `resident` bytes resident.
   /// Throws Error when the resident part alone is already above the limit.
   [[nodiscard]] MemoryPlan plan(std::uint64_t resident, std::size_t faces) const;
+  /// Whether a step over `faces` triangles that starts with `resident` bytes resident runs unstreamed (always
+  /// without a limit; never when streaming is forced). The pipeline asks it first with the last step's candidate
+  /// pages still resident: a step that fits with them fits reusing them (at worst it adds to them what plan
+  /// predicts); only one that does not frees them and plans from the resident memory without them.
+  [[nodiscard]] bool fits(std::uint64_t resident, std::size_t faces) const;
   /// After a step: the transient bytes it would need unstreamed (candidates, front), for the next prediction.
   void record(std::uint64_t candidate_pairs, std::uint64_t front_bytes);
 
  private:
+  /// The transient bytes a step over `faces` triangles is predicted to need unstreamed.
+  [[nodiscard]] std::uint64_t predicted_bytes(std::size_t faces) const;
+
   std::uint64_t limit_ = 0;  ///< 0 = no limit
   std::size_t forced_slices_ = 0;
   std::uint64_t last_transient_ = 0;

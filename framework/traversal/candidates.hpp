@@ -30,9 +30,8 @@ using FacePairs = UninitializedVector<FacePair>;
 ///   - merging the threads' lists into one copied 37 MB into fresh pages: ~7 ms of the 2-thread traversal;
 ///   - a list that grows by doubling copies itself and first-touches about twice its final size: the
 ///     1-thread traversal took 144 ms against 110 with the room reserved.
-/// clear() keeps the parts' memory for the next step. The pipeline does that only without a memory limit:
-/// under one (the default, 80%) it releases them at each step's start, so the budget's resident measure does
-/// not count last step's candidates.
+/// clear() keeps the parts' memory for the next step. The pipeline does that while a step fits the memory
+/// limit with them resident (MemoryBudget::fits), and releases them otherwise, before planning the step.
 class CandidateList {
  public:
   /// At least n parts; existing parts keep their pairs and memory. Not thread-safe: call it before the

@@ -263,5 +263,22 @@ TEST(MemoryBoundedSteps, PlanStreamsOnlyAboveTheBudget) {
   EXPECT_FALSE(tight.plan(std::uint64_t(200) << 20, 1000000).streamed);
 }
 
+TEST(MemoryBoundedSteps, FitsIsWhetherThePlanRunsUnstreamed) {
+  // The pipeline keeps last step's candidate pages only when fits() says yes with them resident.
+  MemoryBudget none(0);
+  EXPECT_TRUE(none.fits(std::uint64_t(1) << 40, 1000000)) << "no limit: always";
+  MemoryBudget tight(std::uint64_t(300) << 20);
+  for (const std::uint64_t resident : {std::uint64_t(200) << 20, std::uint64_t(299) << 20, std::uint64_t(1) << 20})
+    for (const std::size_t faces : {std::size_t(10), std::size_t(100000), std::size_t(1000000)}) {
+      const bool fits = tight.fits(resident, faces);
+      EXPECT_EQ(fits, !tight.plan(resident, faces).streamed) << resident << " resident, " << faces << " faces";
+    }
+  EXPECT_FALSE(tight.fits(std::uint64_t(400) << 20, 10)) << "resident above the limit: no, and no throw";
+  tight.record(1000, 0);
+  EXPECT_TRUE(tight.fits(std::uint64_t(200) << 20, 1000000));
+  MemoryBudget forced(0, 4);
+  EXPECT_FALSE(forced.fits(0, 10)) << "forced slices always stream";
+}
+
 }  // namespace
 }  // namespace ccdlab
