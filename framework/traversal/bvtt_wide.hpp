@@ -206,8 +206,8 @@ class LanePairStack {
 /// others pushed, each with one compress per 16 lanes — no branch on any answer, which is what made the other
 /// walks pay ~11 ns per BV test (docs/wide-bvh.md). Self nodes open into (L, L), (R, R), (L, R) as in the binary
 /// BVTT, so normal-cone skips apply unchanged; (L, R) is pushed untested, since its visit tests L's lanes against
-/// R's anyway (the same candidates: a leaf pair under L × R overlaps only if L and R do). Same candidates as the binary walk (wide_bvh.hpp), in another
-/// order; a BV test is one lane pair of the restricted records.
+/// R's anyway (a leaf pair under L × R overlaps only if L and R do). Same candidates as the binary walk
+/// (wide_bvh.hpp), in another order; a BV test is one lane pair of the restricted records.
 template <class BV>
 CCDLAB_AVX512_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode start, LanePairStack& stack,
                                                    FacePairs& pairs, std::uint64_t& bv_tests_out) {
