@@ -53,9 +53,6 @@ class MemoryBudget {
   void record(std::uint64_t candidate_pairs, std::uint64_t front_bytes);
 
  private:
-  /// The transient bytes a step over `faces` triangles is predicted to need unstreamed.
-  [[nodiscard]] std::uint64_t predicted_bytes(std::size_t faces) const;
-
   std::uint64_t limit_ = 0;  ///< 0 = no limit
   std::size_t forced_slices_ = 0;
   std::uint64_t last_transient_ = 0;
