@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "framework/narrow/plane_filter.hpp"
+#include "framework/narrow/proximity_filter.hpp"
 #include "framework/primitive/feature_pairs.hpp"
 #include "framework/util/uninitialized_vector.hpp"
 
@@ -28,6 +29,7 @@ struct NarrowScratch {
   PlaneBatch plane;
   std::vector<std::uint8_t> keep;
   std::vector<std::uint16_t> open;  ///< stage 3's open windows per row, for stage 4
+  ProximityItems proximity;         ///< stage 4's (row, window) items
 };
 
 }  // namespace ccdlab

@@ -206,8 +206,7 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   const auto t_proximity = Clock::now();
   c.split_ns += ns_since(t_split);
   // Stage 4 on the rows stage 3 kept, in place (same row numbers): the distance on their open windows.
-  for (std::size_t i = 0; i < rows; ++i)
-    if (scratch.keep[i]) scratch.keep[i] = proximity_filter_keeps(plane, i, i < kept_vf, scratch.open[i], kSplitLevels);
+  proximity_filter(plane, kept_vf, rows, scratch.open.data(), kSplitLevels, scratch.keep.data(), scratch.proximity);
   compact(batch, scratch.keep);
   c.proximity_culled += split_kept - batch.vf.size() - batch.ee.size();
   c.proximity_ns += ns_since(t_proximity);

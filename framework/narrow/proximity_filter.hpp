@@ -9,21 +9,42 @@
 // combination of its corners' velocities, so the distance d(t) between the features changes no faster than
 //     S = the largest relative speed of two corners, one from each feature   (the norm is convex),
 // and on a window with middle m and half-width h, d(t) ≥ d(m) − S·h. A lower bound of d(m) is the gap of the
-// features along any unit direction û, the smallest projection of one minus the largest of the other
-// (|x − y| ≥ û·(x − y)); û is taken through the closest points geometry/distance.hpp finds, where the gap is the
-// distance itself. When gap − S·h exceeds the reach, no contact is possible in the window (nothing is assumed
-// about how accurate those closest points are: a poor û only weakens the bound). When every open window is
-// proven, the pair is dropped. Rounding: positions at m, the projections and the columns' own rounding are
-// covered by 128u·M (M = the largest coordinate, as in stage 3), the speed and the reach by a factor 1 + 10⁻¹².
+// features along any direction v, the smallest projection of one minus the largest of the other, over |v|
+// (|x − y| ≥ v·(x − y)/|v|). Nothing is assumed about v: a poor one only weakens the bound. The bound taken is
+// the largest gap over a few directions, one of which joins the features' closest points whatever they are
+// (Ericson, "Real-Time Collision Detection", §5.1.5 and §5.1.9):
+//   VF (vertex a, face {0, b, c}): ±(b × c), the face's normal (closest point inside the face), and a minus its
+//       closest point on each of the three edges (closest point on an edge or a corner);
+//   EE (edge {0, b}, edge {a, a + c}): ±(b × c), the lines' common normal (both closest points inside), and each
+//       of the four endpoints against the other edge (a closest point at an endpoint).
+// So the bound is the distance itself up to rounding, with no branch: all lanes of a vector run the same
+// operations (the plain version was one branchy closest-point query per window, ~95 ns a row on rod-twist).
+// A zero direction (parallel edges, a degenerate face) just offers no bound. When gap − S·h exceeds the
+// reach, no contact is possible in the window; when every open window is proven, the pair is dropped.
+// Rounding: positions at m, the projections and the columns' own rounding are covered by 128u·M (M = the
+// largest coordinate, as in stage 3), the speed and the reach by a factor 1 + 10⁻¹².
 #include <cstdint>
 
 #include "framework/narrow/plane_filter.hpp"
+#include "framework/util/uninitialized_vector.hpp"
 
 namespace ccdlab {
 
-/// Row `row` of `plane` (filled by plane_filter; `vf` or EE), with `open` = the windows of 2^levels that stage 3
-/// did not prove (split_filter_open): whether one of them may still hold a contact within the reach. Plain C++
-/// (one distance per open window, branchy; few rows get here).
+/// Stage 4's working memory: one item per (row, open window), VF rows' first; reused from batch to batch.
+struct ProximityItems {
+  UninitializedVector<std::int64_t> row;
+  UninitializedVector<double> time;  ///< the window's middle
+  UninitializedVector<std::uint8_t> proven;
+};
+
+/// Rows [0, rows) of `plane` (filled by plane_filter; rows below `vf_rows` are VF, the others EE), each with
+/// `open[i]` = the windows of 2^levels that stage 3 did not prove (split_filter): for every row whose keep[i] is
+/// set, keep[i] = whether one of its open windows may still hold a contact within the reach. SIMD over the
+/// (row, window) items, on the best target of this CPU.
+void proximity_filter(const PlaneBatch& plane, std::size_t vf_rows, std::size_t rows, const std::uint16_t* open,
+                      int levels, std::uint8_t* keep, ProximityItems& items);
+
+/// The same test for one row, plain C++: the reference the SIMD targets are checked against.
 [[nodiscard]] bool proximity_filter_keeps(const PlaneBatch& plane, std::size_t row, bool vf, std::uint16_t open,
                                           int levels);
 

@@ -162,6 +162,37 @@ TEST(SplitFilter, EverySimdTargetAgreesWithThePlainVersion) {
   }
 }
 
+TEST(ProximityFilter, EverySimdTargetAgreesWithThePlainVersion) {
+  // Stage 4's SIMD kernel over (row, window) items against its plain version, VF rows then EE rows: on rows near
+  // contact with stage 3's own open windows, and on rows at every scale, coplanar or degenerate (B ∥ C), with
+  // random windows open. Rows whose keep flag is clear must stay clear; the kernel must cull a fair share.
+  std::mt19937 rng(41);
+  PlaneBatch near = near_contact_rows(4001, 23), wild = random_plane_batch(3001, rng);
+  std::uniform_int_distribution<int> mask(0, 0xFFFF);
+  for (PlaneBatch* b : {&near, &wild}) {
+    const std::size_t n = b->size(), nvf = n * 4 / 9;
+    for (CullReach reach : {CullReach{0, 2e-9}, CullReach{0.02, 2e-9}}) {
+      std::vector<std::uint8_t> keep_in(n);
+      plane_filter(*b, reach, keep_in.data());
+      std::vector<std::uint16_t> open(n);
+      for (std::size_t i = 0; i < n; ++i) open[i] = b == &near ? split_filter_open(*b, i, i < nvf) : std::uint16_t(mask(rng));
+      std::vector<std::uint8_t> expect(n);
+      std::size_t culled = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        expect[i] = keep_in[i] && proximity_filter_keeps(*b, i, i < nvf, open[i], kSplitLevels);
+        culled += keep_in[i] && open[i] && !expect[i];
+      }
+      EXPECT_GT(culled, n / 50) << "reach " << reach.abs;
+      for_each_simd_target([&](const char* target) {
+        std::vector<std::uint8_t> keep = keep_in;
+        ProximityItems items;
+        proximity_filter(*b, nvf, n, open.data(), kSplitLevels, keep.data(), items);
+        EXPECT_EQ(keep, expect) << target << " reach " << reach.abs;
+      });
+    }
+  }
+}
+
 Eigen::Matrix3d random_rotation(std::mt19937& rng) {
   std::normal_distribution<double> g;
   return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
