@@ -5,6 +5,7 @@
 //                          on the way are candidates already)
 //   run_bvtt_tasks        : each task is a depth-first traversal below its node, into its thread's part of
 //                          the candidate list
+#include <algorithm>
 #include <chrono>
 
 #include "framework/traversal/bvtt.hpp"
@@ -54,12 +55,46 @@ std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t wa
   return level;
 }
 
+/// What a pass's tasks cost at the last step, so that the next step hands out the largest first (`phc`).
+/// Dynamic scheduling in the breadth-first order let a large task start last: on rod-twist (18 tasks of 0–7.7 ms
+/// at two threads) one thread then idled 1–5% of the traversal. A steady simulation cuts the same tasks step after
+/// step (same topology, same top of the BVTT) at similar costs, so last step's costs order this step's tasks
+/// (longest processing time first: the tail is the smallest tasks). Any other task list runs in its own order.
+/// The order changes which thread finds which candidates, never which are found.
+class TaskCosts {
+ public:
+  /// The order to hand `tasks` out in: largest last cost first when they are the last step's tasks; else theirs.
+  [[nodiscard]] std::vector<std::size_t> order(const std::vector<BvttNode>& tasks) const {
+    std::vector<std::size_t> order(tasks.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    if (same_as_last(tasks))  // stable: equal costs keep the breadth-first order
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return ms_[x] > ms_[y]; });
+    return order;
+  }
+  /// Keeps the costs of `tasks`, handed out in `order`: task_ms[i] is the cost of tasks[order[i]].
+  void record(const std::vector<BvttNode>& tasks, const std::vector<std::size_t>& order, const std::vector<double>& task_ms) {
+    tasks_ = tasks;
+    ms_.assign(tasks.size(), 0.0);
+    for (std::size_t i = 0; i < order.size(); ++i) ms_[order[i]] = task_ms[i];
+  }
+
+ private:
+  [[nodiscard]] bool same_as_last(const std::vector<BvttNode>& tasks) const {
+    return tasks.size() == tasks_.size() &&
+           std::equal(tasks.begin(), tasks.end(), tasks_.begin(),
+                      [](const BvttNode& x, const BvttNode& y) { return x.a == y.a && x.b == y.b; });
+  }
+  std::vector<BvttNode> tasks_;
+  std::vector<double> ms_;
+};
+
 /// Runs a depth-first traversal below each task on `threads` threads: dynamically (one task at a time to
-/// whichever thread is free) or in `threads` equal-count contiguous chunks fixed before the start. Thread t
-/// appends to part t of out.pairs, and hands it over after each task.
+/// whichever thread is free, tasks[order[0]] first) or in `threads` equal-count contiguous chunks fixed before
+/// the start. Thread t appends to part t of out.pairs, and hands it over after each task. trace.task_ms[i] is
+/// the cost of tasks[order[i]].
 template <class BV>
-void run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, int threads, Distribution dist,
-                    TraversalOutput& out, PhaseTrace& trace) {
+void run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, const std::vector<std::size_t>& order,
+                    int threads, Distribution dist, TraversalOutput& out, PhaseTrace& trace) {
   struct Local {
     std::uint64_t bv_tests = 0;
     BvttStack stack;
@@ -68,7 +103,7 @@ void run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, i
   out.pairs.use_parts(threads);
   parallel_tasks(tasks.size(), threads, dist, trace, [&](std::size_t i, int tid) {
     Local& l = local[tid].value;
-    traverse_bvtt(v, tasks[i], l.stack, out.pairs.part(tid), l.bv_tests);
+    traverse_bvtt(v, tasks[order[i]], l.stack, out.pairs.part(tid), l.bv_tests);
     out.hand_over(tid);
   });
   for (const auto& l : local) out.bv_tests += l.value.bv_tests;
@@ -79,9 +114,10 @@ void run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, i
 namespace ccdlab {
 
 /// Breadth-first split of the pass's BVTT into ≥ tasks_per_thread·split_threads tasks (serial, timed as the trace's
-/// serial part), then the tasks on threads. Shared by `phc` (dynamic) and `static` (fixed chunks).
+/// serial part), then the tasks on threads. Shared by `phc` (dynamic, ordered by `costs`, which it updates) and
+/// `static` (fixed chunks in breadth-first order: costs == nullptr).
 inline void split_and_run(const TraversalPass& pass, int tasks_per_thread, Distribution dist, const char* phase,
-                          TraversalOutput& out, std::vector<PhaseTrace>& traces) {
+                          TraversalOutput& out, std::vector<PhaseTrace>& traces, TaskCosts* costs = nullptr) {
   if (pass.bvh_a->nodes.empty() || pass.bvh_b->nodes.empty()) return;
   with_bvtt_view(pass, [&](const auto& view) {
     PhaseTrace trace{phase, dist, 0, {}, {}};
@@ -92,7 +128,9 @@ inline void split_and_run(const TraversalPass& pass, int tasks_per_thread, Distr
     trace.serial_ms += serial;
     out.stats.serial_ms += serial;
     out.stats.tasks += tasks.size();
-    run_bvtt_tasks(view, tasks, pass.threads, dist, out, trace);
+    const std::vector<std::size_t> order = costs ? costs->order(tasks) : TaskCosts().order(tasks);
+    run_bvtt_tasks(view, tasks, order, pass.threads, dist, out, trace);
+    if (costs) costs->record(tasks, order, trace.task_ms);
     traces.push_back(std::move(trace));
   });
 }

@@ -1,11 +1,10 @@
 #include "strategies/schedulers/phc_scheduler.hpp"
 
-#include "framework/traversal/bvtt_tasks.hpp"
 
 namespace ccdlab {
 
 void PhcScheduler::collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) {
-  split_and_run(pass, params_.tasks_per_thread, Distribution::dynamic, "traverse", out, traces);
+  split_and_run(pass, params_.tasks_per_thread, Distribution::dynamic, "traverse", out, traces, &costs_[pass.id]);
 }
 
 }  // namespace ccdlab

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "framework/pipeline/ccd_pipeline.hpp"
+#include "framework/traversal/bvtt_tasks.hpp"
 #include "strategies/registry.hpp"
 #include "strategies/scenes/drape_fold_scene.hpp"
 #include "strategies/schedulers/front_scheduler.hpp"
@@ -109,6 +110,22 @@ TEST(Schedulers, IdenticalAnswersForEverySchedulerAndThreadCount) {
       EXPECT_EQ(taken.hashes, reference.hashes);
       EXPECT_EQ(taken.work, r.work);
     }
+}
+
+// phc hands a pass's tasks out largest first by their costs at the last step, only when they are the same tasks
+// (IdenticalAnswersForEverySchedulerAndThreadCount above runs it over several steps: same candidates).
+TEST(Schedulers, PhcHandsOutTheLastStepsLargestTasksFirst) {
+  TaskCosts costs;
+  const std::vector<BvttNode> tasks{{1, 1}, {2, 2}, {1, 2}, {3, 4}};
+  using Order = std::vector<std::size_t>;
+  EXPECT_EQ(costs.order(tasks), (Order{0, 1, 2, 3})) << "no history: breadth-first";
+  // Handed out as 3, 2, 1, 0, the costs in that order: tasks[3] 5 ms, tasks[2] 1, tasks[1] 7, tasks[0] 1.
+  costs.record(tasks, Order{3, 2, 1, 0}, {5.0, 1.0, 7.0, 1.0});
+  EXPECT_EQ(costs.order(tasks), (Order{1, 3, 0, 2})) << "7, 5, then the equal ones in breadth-first order";
+  std::vector<BvttNode> other = tasks;
+  other[2] = {2, 3};
+  EXPECT_EQ(costs.order(other), (Order{0, 1, 2, 3})) << "other tasks: their own order";
+  EXPECT_EQ(costs.order({tasks.begin(), tasks.end() - 1}), (Order{0, 1, 2}));
 }
 
 /// Leaf pairs (faces) covered by each front node of a self pass, counted.
