@@ -1,6 +1,5 @@
 #include "strategies/schedulers/phc_scheduler.hpp"
 
-
 namespace ccdlab {
 
 void PhcScheduler::collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) {
