@@ -442,7 +442,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   test_orphans(result);
 
   t = Clock::now();
-  sort_contacts(result.contacts);
+  sort_contacts(result.contacts, sort_scratch_);
   result.traces.push_back(PhaseTrace{"sort_contacts", Distribution::dynamic, ms_since(t), {}, {}});  // serial
   tm.total_ms = ms_since(t_start);
   result.memory.peak_rss_bytes = peak_rss_bytes();

@@ -125,6 +125,7 @@ class CcdPipeline {
   std::vector<Index> face_patch_;  ///< normal cones: the skipped patch (BVH node) holding each face this step, or −1
   TraversalOutput candidates_;
   MemoryBudget budget_;
+  ContactSortScratch sort_scratch_;  ///< sort_contacts' buffers, kept across steps
   bool built_ = false;
   bool record_tested_ = false;
   bool keep_candidates_ = false;

@@ -3,11 +3,52 @@
 #include "framework/geometry/distance.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
+#include <limits>
 
 namespace ccdlab {
 
+void sort_contacts(Contacts& contacts, ContactSortScratch& scratch) {
+  const std::size_t n = contacts.size();
+  const bool packable = n <= std::numeric_limits<std::uint32_t>::max() &&
+                        std::all_of(contacts.begin(), contacts.end(), [](const Contact& c) {
+                          return c.feature_a >= 0 && c.feature_b >= 0 && std::uint8_t(c.kind) <= 1;
+                        });
+  if (n < 256 || !packable) {
+    std::sort(contacts.begin(), contacts.end(), [](const Contact& x, const Contact& y) { return x.key() < y.key(); });
+    return;
+  }
+  // The sort is serial, at the end of every step, and a contact is 56 bytes: std::sort on the contacts took
+  // 0.3 ms for rod-twist's 4,944 (1% of its step at two threads). Instead the packed keys and their indices are
+  // radix-sorted (LSD, 8-bit digits, a digit equal in every key skipped; stable) and each contact moved once:
+  // 0.07 ms. The packing keeps key()'s order: kind < 2, feature ids in [0, 2³¹).
+  using Keyed = ContactSortScratch::Keyed;
+  std::vector<Keyed>&a = scratch.keys, &b = scratch.swap;
+  a.resize(n), b.resize(n);
+  std::uint64_t any = 0, every = ~0ull;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Contact& c = contacts[i];
+    const std::uint64_t key = std::uint64_t(c.kind) << 62 | std::uint64_t(std::uint32_t(c.feature_a)) << 31 |
+                              std::uint64_t(std::uint32_t(c.feature_b));
+    a[i] = {key, std::uint32_t(i)};
+    any |= key, every &= key;
+  }
+  for (int shift = 0; shift < 64; shift += 8) {
+    if (((any ^ every) >> shift & 0xFFu) == 0) continue;
+    std::array<std::size_t, 257> start{};
+    for (const Keyed& k : a) ++start[(k.key >> shift & 0xFFu) + 1];
+    for (std::size_t d = 0; d < 256; ++d) start[d + 1] += start[d];
+    for (const Keyed& k : a) b[start[k.key >> shift & 0xFFu]++] = k;
+    a.swap(b);
+  }
+  scratch.moved.assign(contacts.begin(), contacts.end());
+  for (std::size_t i = 0; i < n; ++i) contacts[i] = scratch.moved[a[i].index];
+}
+
 void sort_contacts(Contacts& contacts) {
-  std::sort(contacts.begin(), contacts.end(), [](const Contact& x, const Contact& y) { return x.key() < y.key(); });
+  ContactSortScratch scratch;
+  sort_contacts(contacts, scratch);
 }
 
 std::uint64_t contact_set_hash(std::span<const Contact> sorted_contacts, std::uint64_t seed) {

@@ -72,7 +72,19 @@ using Contacts = UninitializedVector<Contact>;
 /// edges parallel at that time.
 Vec3 contact_normal(const Contact& c, const Positions& x_t0, const Positions& x_t1);
 
-/// Sorts contacts by feature identity.
+/// What sort_contacts works in, kept by a caller that sorts every step: fresh pages for these buffers at each
+/// step cost more than the sort itself (page faults).
+struct ContactSortScratch {
+  struct Keyed {
+    std::uint64_t key;  ///< Contact::key() packed: kind · 2⁶² + feature_a · 2³¹ + feature_b
+    std::uint32_t index;
+  };
+  std::vector<Keyed> keys, swap;
+  std::vector<Contact> moved;
+};
+
+/// Sorts contacts by feature identity (Contact::key()).
+void sort_contacts(Contacts& contacts, ContactSortScratch& scratch);
 void sort_contacts(Contacts& contacts);
 
 /// 64-bit FNV-1a hash of the sorted (kind, feature_a, feature_b) of all contacts: equal contact sets give
