@@ -110,8 +110,11 @@ void refit_node(const BvhTopology& bvh, BvArray<BV>& bvs, Index i, LeafBv&& leaf
   if (n.is_leaf()) {
     if constexpr (!std::is_same_v<std::remove_cvref_t<LeafBv>, LeavesInPlace>) bvs[i] = leaf_bv(n.face);
   } else {
-    bvs[i] = bvs[n.left];
-    bvs[i].merge(bvs[n.right]);
+    // Merged in a local: written into bvs[i] directly, the compiler must assume bvs[i] may alias bvs[n.right]
+    // and stores each axis before reading the next (scalar min/max, one store per axis).
+    BV merged = bvs[n.left];
+    merged.merge(bvs[n.right]);
+    bvs[i] = merged;
   }
 }
 
