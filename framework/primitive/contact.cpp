@@ -24,7 +24,8 @@ void sort_contacts(Contacts& contacts, ContactSortScratch& scratch) {
   // radix-sorted (LSD, 8-bit digits, a digit equal in every key skipped; stable) and each contact moved once:
   // 0.07 ms. The packing keeps key()'s order: kind < 2, feature ids in [0, 2³¹).
   using Keyed = ContactSortScratch::Keyed;
-  std::vector<Keyed>&a = scratch.keys, &b = scratch.swap;
+  std::vector<Keyed>& a = scratch.keys;
+  std::vector<Keyed>& b = scratch.swap;
   a.resize(n), b.resize(n);
   std::uint64_t any = 0, every = ~0ull;
   for (std::size_t i = 0; i < n; ++i) {

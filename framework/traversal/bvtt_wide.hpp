@@ -330,7 +330,9 @@ CCDLAB_AVX512_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNo
     // Ask for the records of the node two below the top: visited next but one when this visit pushes nothing
     // (the usual case near the leaves), or after this visit's pushes, still soon. The first read of a record was
     // the walk's hottest instruction (a miss); one below the top came too late to help as much
-    // (BM_TraverseWidth/4, rod-twist: 1.08x with two below, 1.04x with one below, docs/wide-bvh.md).
+    // (BM_TraverseWidth/4, rod-twist: 1.08x with two below, 1.04x with one below, docs/wide-bvh.md). A self
+    // node's entry holds its node id, not a home: id / W is then some record (ids < 2 · records), a useless but
+    // harmless prefetch.
     if (top >= 2) {
       const Index wa2 = col_wa[top - 2], wb2 = col_wb[top - 2];
       const char* ra = reinterpret_cast<const char*>(wide_a + (wa2 >= 0 ? wa2 : col_ha[top - 2] / W));
