@@ -9,6 +9,11 @@ alternating (A B, B A, ...), and prints one Markdown row per step and side with 
 elementary tests, tests per true contact, ms per phase, and ns per feature pair in the narrow phase
 (candidates' pairs and orphans together). Both sides must report the same contact hash (exit 1 otherwise).
 
+`--c CLI --c-args "..."` adds a third side, alternating with the other two in every round (A B C, C B A, ...),
+e.g. the revision before a change beside the change and the baseline. The A/B and A/C rows give the total's
+ratio as the median of the per-round ratios (each round's runs are close in time: this VM's speed drifts
+between rounds), the narrow phase's as the ratio of the medians.
+
 `--steady N` times the steady state instead, as in a simulation's later steps: each run is one process,
 `CLI run` of frames T0 T1 T0 T1 ... (N steps, every other one backwards: the same pairs and contacts), and
 its value is the median over steps 2..N (the first builds the hierarchy and touches the memory). The side
@@ -81,8 +86,10 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--a", required=True, help="CLI of side A")
     ap.add_argument("--b", default="build/bin/ccdlab", help="CLI of side B")
+    ap.add_argument("--c", default=None, help="CLI of an optional side C")
     ap.add_argument("--a-args", default="", help="extra step arguments of side A")
     ap.add_argument("--b-args", default="", help="extra step arguments of side B")
+    ap.add_argument("--c-args", default="", help="extra step arguments of side C")
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--steady", type=int, default=0, metavar="N",
@@ -90,8 +97,12 @@ def main():
     ap.add_argument("--data", default=os.path.join(os.path.dirname(__file__), "..", "..", "shared", "data"))
     o = ap.parse_args()
     sides = {"A": (o.a, shlex.split(o.a_args)), "B": (o.b, shlex.split(o.b_args))}
+    if o.c:
+        sides["C"] = (o.c, shlex.split(o.c_args))
+    names = list(sides)
     mode = f"steady state: {o.steady} steps a run, medians of steps 2..{o.steady}; " if o.steady else ""
-    print(f"threads {o.threads}, {mode}{o.rounds} alternating rounds, medians. A = `{o.a} {o.a_args}`, B = `{o.b} {o.b_args}`\n")
+    described = ", ".join(f"{n} = `{cli} {' '.join(args)}`" for n, (cli, args) in sides.items())
+    print(f"threads {o.threads}, {mode}{o.rounds} alternating rounds, medians. {described}\n")
     print("| step | side | triangles | BV tests | feature pairs | elementary tests | tests / true contact | "
           "ms total | ms traverse | ms narrow + orphans | ns / feature pair | ns / test |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
@@ -102,26 +113,30 @@ def main():
         if not os.path.exists(t0):
             print(f"narrow_table: {t0} absent, skipped", file=sys.stderr)
             continue
-        runs = {"A": [], "B": []}
+        runs = {n: [] for n in names}
         for i in range(o.rounds):
-            for side in (["A", "B"] if i % 2 == 0 else ["B", "A"]):
+            for side in (names if i % 2 == 0 else names[::-1]):
                 cli, args = sides[side]
                 if o.steady:
                     runs[side].append(run_steady(cli, t0, t1, args, o.steady, o.threads))
                 else:
                     runs[side].append(run(cli, t0, t1, args + ["--threads", str(o.threads)]))
         rows = {side: summary(r) for side, r in runs.items()}
-        if rows["A"]["hash"] != rows["B"]["hash"]:
-            print(f"narrow_table: {scene}: contact hashes differ: {rows['A']['hash']} vs {rows['B']['hash']}", file=sys.stderr)
+        hashes = {side: row["hash"] for side, row in rows.items()}
+        if len(set(hashes.values())) > 1:
+            print(f"narrow_table: {scene}: contact hashes differ: {hashes}", file=sys.stderr)
             status = 1
         tri = runs["A"][0].get("triangles", "")
-        for side in ("A", "B"):
+        for side in names:
             s = rows[side]
             print(f"| {scene} | {side} | {tri:,} | {s['bv_tests'] / 1e6:.2f}M | {s['pairs'] / 1e6:.2f}M | "
                   f"{s['tests'] / 1e6:.3f}M | {s['tests'] / max(s['contacts'], 1):.1f} | {s['total']:.0f} | "
                   f"{s['traverse']:.0f} | {s['narrow']:.0f} | {s['ns_per_pair']:.0f} | {s['ns_per_test']:.0f} |")
-        print(f"| {scene} | A/B | | | | | | {rows['A']['total'] / rows['B']['total']:.2f}× | | "
-              f"{rows['A']['narrow'] / rows['B']['narrow']:.2f}× | {rows['A']['ns_per_pair'] / rows['B']['ns_per_pair']:.2f}× | |")
+        for other in names[1:]:
+            per_round = statistics.median(a["ms"]["total"] / x["ms"]["total"] for a, x in zip(runs["A"], runs[other]))
+            print(f"| {scene} | A/{other} | | | | | | {per_round:.2f}× | | "
+                  f"{rows['A']['narrow'] / rows[other]['narrow']:.2f}× | "
+                  f"{rows['A']['ns_per_pair'] / rows[other]['ns_per_pair']:.2f}× | |")
     sys.exit(status)
 
 
