@@ -109,9 +109,11 @@ WideLayout WideLayout::of(const BvhTopology& bvh, const std::vector<Face>& faces
   Index inner = 0;
   for (Index i = 0; i < bvh.size(); ++i) w.slot[i] = bvh.nodes[i].is_leaf() ? ~bvh.nodes[i].face : inner++;
   w.lanes.reserve(std::size_t(inner));
+  w.owner.reserve(std::size_t(inner) + 1);
   for (Index i = 0; i < bvh.size(); ++i) {
     const BvhNode& n = bvh.nodes[i];
     if (n.is_leaf()) continue;
+    w.owner.push_back(i);
     Lanes l;
     l.node.fill(-1);
     l.slot.fill(kNoSlot);
@@ -140,6 +142,7 @@ WideLayout WideLayout::of(const BvhTopology& bvh, const std::vector<Face>& faces
     for (int j = 0; j < kWidth; ++j)
       if (top.node[j] >= 0) top.slot[j] = w.slot[top.node[j]];
     w.lanes.push_back(top);
+    w.owner.push_back(-1);
   }
   for (Lanes& l : w.lanes)
     for (int j = 0; j < kWidth; ++j)

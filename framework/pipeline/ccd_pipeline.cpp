@@ -75,8 +75,8 @@ std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std
   const std::uint64_t bvh = 2 * f * (sizeof(BvhNode) + sizeof(Index) + bv);  // nodes, leaf counts, node volumes
   const std::uint64_t wide_bounds =
       std::visit([](const auto& vec) { return std::uint64_t(sizeof(vec[0])); }, make_wide_bvs(k));
-  // One wide node per inner node (f − 1) and the top one: its lanes and bounds, plus a slot and a home per node.
-  const std::uint64_t wide = width == 4 ? f * (sizeof(WideLayout::Lanes) + wide_bounds) + 4 * f * sizeof(Index) : 0;
+  // One wide node per inner node (f − 1) and the top one: its lanes, bounds and owner, plus a slot and a home per node.
+  const std::uint64_t wide = width == 4 ? f * (sizeof(WideLayout::Lanes) + wide_bounds + sizeof(Index)) + 4 * f * sizeof(Index) : 0;
   const std::uint64_t feature_boxes = v * FeatureBounds::kBytesPerVertex;
   const std::uint64_t records = std::max<std::uint64_t>(f * sizeof(GatherRecord), kLargeAllocation);  // one huge page at least
   const std::uint64_t ownership = (v + e) * sizeof(Index) + f + records;  // owners, masks, the gather's records

@@ -199,6 +199,108 @@ class LanePairStack {
 };
 
 #if defined(CCDLAB_HAS_AVX512_WALK)
+/// The lane-pair walk's stack columns and candidate cursor, as one visit writes them.
+struct LanePairCursor {
+  Index* col_ha;
+  Index* col_hb;
+  Index* col_wa;
+  Index* col_wb;
+  std::size_t top;  ///< entries on the stack
+  FacePair* pout;   ///< where the next candidate goes (room for W · W more, checked by the caller)
+};
+
+/// What one pair visit found among its `allowed` lane pairs (bit 4i + j: lane i of record a, lane j of record b).
+struct LanePairAnswer {
+  unsigned hit;       ///< overlapping lane pairs
+  unsigned down;      ///< overlapping lane pairs with an inner side: pushed as children
+  unsigned adjacent;  ///< overlapping leaf pairs of faces that share a vertex (self passes): never candidates
+};
+
+/// One pair visit of the lane-pair walk — THE kernel every scheduler's BVTT work goes through at width 4 (the
+/// walk below, the wide front in bvtt_wide_front.hpp): the `allowed` lane pairs of records A (index ra) and B
+/// (rb) tested at once (overlapping_lane_pairs); overlapping leaf pairs written as candidates (adjacent ones
+/// dropped in self passes, the pair ordered (min, max)), the other overlapping lane pairs pushed as children with
+/// homes ra · 4 + i and rb · 4 + j (for a side restricted to one leaf lane, that is its home: it stays). No
+/// branch on any answer: compress-stores.
+template <class BV>
+CCDLAB_AVX512_TARGET __attribute__((always_inline)) inline LanePairAnswer visit_lane_pairs(
+    const WideBounds<BV>& A, const WideBounds<BV>& B, Index ra, Index rb, unsigned allowed, bool self,
+    LanePairCursor& cur) {
+  constexpr int W = WideLayout::kWidth;
+  const __m512i rows = CCDLAB_LANE_ROWS;  // lane 4i + j: row i (a's lane), column j (b's lane)
+  const __m512i cols = _mm512_set_epi32(3, 2, 1, 0, 3, 2, 1, 0, 3, 2, 1, 0, 3, 2, 1, 0);
+  const auto load4 = [](const Index* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); };
+  const unsigned hit = overlapping_lane_pairs(A, B) & allowed;
+  // Each lane pair's slots; a slot < 0 is a leaf (~face).
+  const __m512i sa = _mm512_permutexvar_epi32(rows, _mm512_castsi128_si512(load4(A.lanes.slot.data())));
+  const __m512i sb = _mm512_broadcast_i32x4(load4(B.lanes.slot.data()));
+  const unsigned leaves = _mm512_movepi32_mask(sa) & _mm512_movepi32_mask(sb);
+  unsigned emit = hit & leaves;
+  const unsigned down = hit & ~leaves;
+  unsigned adjacent = 0;
+  if (emit) {
+    const __m512i ones = _mm512_set1_epi32(-1);
+    const __m512i fa = _mm512_xor_si512(sa, ones), fb = _mm512_xor_si512(sb, ones);  // ~slot = face
+    __m512i first = fa, second = fb;
+    if (self) {  // TriMesh::faces_adjacent on 16 lane pairs; candidates ordered (min, max)
+      __mmask16 shared = 0;
+      for (int p = 0; p < 3; ++p) {
+        const __m512i va = _mm512_permutexvar_epi32(rows, _mm512_castsi128_si512(load4(A.lanes.vert[p].data())));
+        for (int q = 0; q < 3; ++q)
+          shared |= _mm512_cmpeq_epi32_mask(va, _mm512_broadcast_i32x4(load4(B.lanes.vert[q].data())));
+      }
+      adjacent = emit & unsigned(shared);
+      emit &= ~unsigned(shared);
+      first = _mm512_min_epi32(fa, fb), second = _mm512_max_epi32(fa, fb);
+    }
+    // Interleave (lo, hi) of lanes 0..7 and 8..15 into FacePairs.
+    const __m512i pairs_0_7 = _mm512_set_epi32(23, 7, 22, 6, 21, 5, 20, 4, 19, 3, 18, 2, 17, 1, 16, 0);
+    const __m512i pairs_8_15 = _mm512_set_epi32(31, 15, 30, 14, 29, 13, 28, 12, 27, 11, 26, 10, 25, 9, 24, 8);
+    const __m512i p0 = _mm512_permutex2var_epi32(first, pairs_0_7, second);
+    const __m512i p1 = _mm512_permutex2var_epi32(first, pairs_8_15, second);
+    _mm512_storeu_si512(cur.pout, _mm512_maskz_compress_epi64(__mmask8(emit), p0));
+    cur.pout += std::popcount(emit & 0xFFu);
+    _mm512_storeu_si512(cur.pout, _mm512_maskz_compress_epi64(__mmask8(emit >> 8), p1));
+    cur.pout += std::popcount(emit >> 8);
+  }
+  if (down) {
+    // The children's homes: record · 4 + lane (a leaf side restricted to its home lane keeps its home); their
+    // slots are the lanes' (sa / sb).
+    const __m512i ha16 = _mm512_add_epi32(_mm512_set1_epi32(ra * W), rows);
+    const __m512i hb16 = _mm512_add_epi32(_mm512_set1_epi32(rb * W), cols);
+    const __mmask16 m = __mmask16(down);
+    _mm512_storeu_si512(cur.col_ha + cur.top, _mm512_maskz_compress_epi32(m, ha16));
+    _mm512_storeu_si512(cur.col_hb + cur.top, _mm512_maskz_compress_epi32(m, hb16));
+    _mm512_storeu_si512(cur.col_wa + cur.top, _mm512_maskz_compress_epi32(m, sa));
+    _mm512_storeu_si512(cur.col_wb + cur.top, _mm512_maskz_compress_epi32(m, sb));
+    cur.top += std::size_t(std::popcount(down));
+  }
+  return {hit, down, adjacent};
+}
+
+/// The lane pairs a visit of stack entry (ha, hb, wa, wb) tests: all used lanes of an inner side's record, a leaf
+/// side's home lane only. Sets the records it opens.
+template <class BV>
+inline unsigned entry_lane_pairs(const WideBounds<BV>* wide_a, const WideBounds<BV>* wide_b, Index ha, Index hb,
+                                 Index wa, Index wb, Index& ra, Index& rb) {
+  constexpr int W = WideLayout::kWidth;
+  ra = wa >= 0 ? wa : ha / W, rb = wb >= 0 ? wb : hb / W;
+  const unsigned row_lanes = wa >= 0 ? (1u << used_lanes(wide_a[ra])) - 1 : 1u << (ha % W);
+  const unsigned col_lanes = wb >= 0 ? (1u << used_lanes(wide_b[rb])) - 1 : 1u << (hb % W);
+  return lane_rows_mask(row_lanes) & (col_lanes * 0x1111u);
+}
+
+/// Asks for the records that stack entry `i` will open (the walks prefetch the entry two below the top).
+template <class BV>
+inline void prefetch_entry_records(const WideBounds<BV>* wide_a, const WideBounds<BV>* wide_b, const LanePairCursor& c,
+                                   std::size_t i) {
+  constexpr int W = WideLayout::kWidth;
+  const Index wa = c.col_wa[i], wb = c.col_wb[i];
+  const char* ra = reinterpret_cast<const char*>(wide_a + (wa >= 0 ? wa : c.col_ha[i] / W));
+  const char* rb = reinterpret_cast<const char*>(wide_b + (wb >= 0 ? wb : c.col_hb[i] / W));
+  for (std::size_t line = 0; line < sizeof(WideBounds<BV>); line += 64) __builtin_prefetch(ra + line), __builtin_prefetch(rb + line);
+}
+
 /// Depth-first traversal over the 4-wide view in AVX-512 (call only where lane_pairs_walk_available()). A pair
 /// node opens both sides at once: an inner side's record, or, for a leaf, the record that holds it (its home)
 /// restricted to that lane. One overlapping_lane_pairs gives the 16 lane pairs' answers; the pairs of two leaves
@@ -225,21 +327,20 @@ CCDLAB_AVX512_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNo
   const bool self = v.self;
   std::uint64_t bv_tests = 0;
   // A visit pushes at most 16 pair nodes, or 2 for a self node; room is checked before each visit.
-  std::size_t top = 0;
-  Index *col_ha = nullptr, *col_hb = nullptr, *col_wa = nullptr, *col_wb = nullptr;
+  LanePairCursor cur{nullptr, nullptr, nullptr, nullptr, 0, nullptr};
   const auto make_room = [&](std::size_t n) {
-    stack.reserve(n, top);
-    col_ha = stack.column(0), col_hb = stack.column(1), col_wa = stack.column(2), col_wb = stack.column(3);
+    stack.reserve(n, cur.top);
+    cur.col_ha = stack.column(0), cur.col_hb = stack.column(1), cur.col_wa = stack.column(2), cur.col_wb = stack.column(3);
   };
   make_room(64);
   const auto push = [&](Index ha, Index hb, Index wa, Index wb) {
-    col_ha[top] = ha, col_hb[top] = hb, col_wa[top] = wa, col_wb[top] = wb;
-    ++top;
+    cur.col_ha[cur.top] = ha, cur.col_hb[cur.top] = hb, cur.col_wa[cur.top] = wa, cur.col_wb[cur.top] = wb;
+    ++cur.top;
   };
   // Candidates: written in place, 16 at a time (full-width stores), into room made ahead, trimmed at the end.
   std::size_t emitted = pairs.size();
   pairs.resize(std::max<std::size_t>(pairs.capacity(), emitted + 1024));
-  FacePair* pout = pairs.data() + emitted;
+  cur.pout = pairs.data() + emitted;
   FacePair* pend = pairs.data() + pairs.size();
   // The visited node: each side's home and slot (as on the stack).
   Index ha = start.a, hb = start.b, wa = -1, wb = -1;
@@ -249,15 +350,9 @@ CCDLAB_AVX512_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNo
     visit = bva[start.a].overlaps(bvb[start.b]);
     ha = home_a[start.a], hb = home_b[start.b], wa = slot_a[start.a], wb = slot_b[start.b];
   }
-  const __m512i rows = CCDLAB_LANE_ROWS;  // lane 4i + j: row i (a's lane), column j (b's lane)
-  const __m512i cols = _mm512_set_epi32(3, 2, 1, 0, 3, 2, 1, 0, 3, 2, 1, 0, 3, 2, 1, 0);
-  // Interleave (lo, hi) of lanes 0..7 and 8..15 into FacePairs.
-  const __m512i pairs_0_7 = _mm512_set_epi32(23, 7, 22, 6, 21, 5, 20, 4, 19, 3, 18, 2, 17, 1, 16, 0);
-  const __m512i pairs_8_15 = _mm512_set_epi32(31, 15, 30, 14, 29, 13, 28, 12, 27, 11, 26, 10, 25, 9, 24, 8);
-  const auto load4 = [](const Index* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); };
   for (;;) {
     if (visit) {
-      if (top + 2 * W * W > stack.cap()) [[unlikely]] make_room(top + 2 * W * W);
+      if (cur.top + 2 * W * W > stack.cap()) [[unlikely]] make_room(cur.top + 2 * W * W);
       if (self && ha == hb) {  // a self node (a pair node's homes differ)
         const BvhNode& A = na[ha];
         if (!A.is_leaf() && !(skip_root && skip_root[ha] >= 0)) {
@@ -269,79 +364,31 @@ CCDLAB_AVX512_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNo
           continue;
         }
       } else {
-        // Each side's record and the lanes that stand for it: all of an inner side's, a leaf's home lane only.
-        const Index ra = wa >= 0 ? wa : ha / W, rb = wb >= 0 ? wb : hb / W;
-        const unsigned row_lanes = wa >= 0 ? (1u << used_lanes(wide_a[ra])) - 1 : 1u << (ha % W);
-        const unsigned col_lanes = wb >= 0 ? (1u << used_lanes(wide_b[rb])) - 1 : 1u << (hb % W);
-        const WideBounds<BV>& A = wide_a[ra];
-        const WideBounds<BV>& B = wide_b[rb];
-        bv_tests += unsigned(std::popcount(row_lanes) * std::popcount(col_lanes));
-        const unsigned hit = overlapping_lane_pairs(A, B) & lane_rows_mask(row_lanes) & (col_lanes * 0x1111u);
-        // Each lane pair's slots; a slot < 0 is a leaf (~face).
-        const __m512i sa = _mm512_permutexvar_epi32(rows, _mm512_castsi128_si512(load4(A.lanes.slot.data())));
-        const __m512i sb = _mm512_broadcast_i32x4(load4(B.lanes.slot.data()));
-        const unsigned leaves = _mm512_movepi32_mask(sa) & _mm512_movepi32_mask(sb);
-        unsigned emit = hit & leaves;
-        const unsigned down = hit & ~leaves;
-        if (emit) {
-          const __m512i ones = _mm512_set1_epi32(-1);
-          const __m512i fa = _mm512_xor_si512(sa, ones), fb = _mm512_xor_si512(sb, ones);  // ~slot = face
-          __m512i first = fa, second = fb;
-          if (self) {  // TriMesh::faces_adjacent on 16 lane pairs; candidates ordered (min, max)
-            __mmask16 adjacent = 0;
-            for (int p = 0; p < 3; ++p) {
-              const __m512i va = _mm512_permutexvar_epi32(rows, _mm512_castsi128_si512(load4(A.lanes.vert[p].data())));
-              for (int q = 0; q < 3; ++q)
-                adjacent |= _mm512_cmpeq_epi32_mask(va, _mm512_broadcast_i32x4(load4(B.lanes.vert[q].data())));
-            }
-            emit &= ~unsigned(adjacent);
-            first = _mm512_min_epi32(fa, fb), second = _mm512_max_epi32(fa, fb);
-          }
-          if (pout + W * W > pend) [[unlikely]] {
-            emitted = std::size_t(pout - pairs.data());
-            pairs.resize(2 * pairs.size() + W * W);
-            pout = pairs.data() + emitted;
-            pend = pairs.data() + pairs.size();
-          }
-          const __m512i p0 = _mm512_permutex2var_epi32(first, pairs_0_7, second);
-          const __m512i p1 = _mm512_permutex2var_epi32(first, pairs_8_15, second);
-          _mm512_storeu_si512(pout, _mm512_maskz_compress_epi64(__mmask8(emit), p0));
-          pout += std::popcount(emit & 0xFFu);
-          _mm512_storeu_si512(pout, _mm512_maskz_compress_epi64(__mmask8(emit >> 8), p1));
-          pout += std::popcount(emit >> 8);
+        Index ra, rb;
+        const unsigned allowed = entry_lane_pairs(wide_a, wide_b, ha, hb, wa, wb, ra, rb);
+        bv_tests += unsigned(std::popcount(allowed));
+        if (cur.pout + W * W > pend) [[unlikely]] {
+          emitted = std::size_t(cur.pout - pairs.data());
+          pairs.resize(2 * pairs.size() + W * W);
+          cur.pout = pairs.data() + emitted;
+          pend = pairs.data() + pairs.size();
         }
-        if (down) {
-          // The children: an inner side's lane is record · 4 + lane; a leaf side keeps its home (its slot is
-          // its lane's, already in sa / sb).
-          const __m512i ha16 = wa >= 0 ? _mm512_add_epi32(_mm512_set1_epi32(ra * W), rows) : _mm512_set1_epi32(ha);
-          const __m512i hb16 = wb >= 0 ? _mm512_add_epi32(_mm512_set1_epi32(rb * W), cols) : _mm512_set1_epi32(hb);
-          const __mmask16 m = __mmask16(down);
-          _mm512_storeu_si512(col_ha + top, _mm512_maskz_compress_epi32(m, ha16));
-          _mm512_storeu_si512(col_hb + top, _mm512_maskz_compress_epi32(m, hb16));
-          _mm512_storeu_si512(col_wa + top, _mm512_maskz_compress_epi32(m, sa));
-          _mm512_storeu_si512(col_wb + top, _mm512_maskz_compress_epi32(m, sb));
-          top += std::size_t(std::popcount(down));
-        }
+        visit_lane_pairs(wide_a[ra], wide_b[rb], ra, rb, allowed, self, cur);
       }
     }
-    if (top == 0) break;
-    --top;
-    ha = col_ha[top], hb = col_hb[top], wa = col_wa[top], wb = col_wb[top];
+    if (cur.top == 0) break;
+    --cur.top;
+    ha = cur.col_ha[cur.top], hb = cur.col_hb[cur.top], wa = cur.col_wa[cur.top], wb = cur.col_wb[cur.top];
     // Ask for the records of the node two below the top: visited next but one when this visit pushes nothing
     // (the usual case near the leaves), or after this visit's pushes, still soon. The first read of a record was
     // the walk's hottest instruction (a miss); one below the top came too late to help as much
     // (BM_TraverseWidth/4, rod-twist: 1.08x with two below, 1.04x with one below, docs/wide-bvh.md). A self
     // node's entry holds its node id, not a home: id / W is then some record (ids < 2 · records), a useless but
     // harmless prefetch.
-    if (top >= 2) {
-      const Index wa2 = col_wa[top - 2], wb2 = col_wb[top - 2];
-      const char* ra = reinterpret_cast<const char*>(wide_a + (wa2 >= 0 ? wa2 : col_ha[top - 2] / W));
-      const char* rb = reinterpret_cast<const char*>(wide_b + (wb2 >= 0 ? wb2 : col_hb[top - 2] / W));
-      for (std::size_t line = 0; line < sizeof(WideBounds<BV>); line += 64) __builtin_prefetch(ra + line), __builtin_prefetch(rb + line);
-    }
+    if (cur.top >= 2) prefetch_entry_records(wide_a, wide_b, cur, cur.top - 2);
     visit = true;
   }
-  pairs.resize(std::size_t(pout - pairs.data()));
+  pairs.resize(std::size_t(cur.pout - pairs.data()));
   bv_tests_out += bv_tests;
 }
 #endif

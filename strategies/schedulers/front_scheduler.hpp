@@ -4,11 +4,15 @@
 // in fixed-size chunks handed out dynamically, so the first traversal from the root (the serial top of `phc`)
 // disappears after the first step and the BV tests above the front are not repeated (the paper's λ).
 // The front is stored as a list of pieces in traversal order; each task takes a run of consecutive pieces
-// holding at most `chunk` nodes and writes one new piece, so nothing is copied between steps and the front —
+// holding at most `chunk` entries and writes one new piece, so nothing is copied between steps and the front —
 // and the work — does not depend on the thread count.
+// At bv.width 4, where the CPU has the lane-pair walk, the front is one of record pairs with their cut lane pairs
+// (bvtt_wide_front.hpp), visited by the kernel every other scheduler's walk uses; elsewhere, and at bv.width 2
+// (the paper's original), it is the binary front of node pairs (bvtt_front.hpp).
 #include <map>
 
 #include "framework/traversal/bvtt_front.hpp"
+#include "framework/traversal/bvtt_wide_front.hpp"
 #include "framework/traversal/scheduler.hpp"
 
 namespace ccdlab {
@@ -16,7 +20,7 @@ namespace ccdlab {
 class FrontScheduler final : public TraversalScheduler {
  public:
   struct Params {
-    int chunk = 512;               ///< front nodes per task
+    int chunk = 512;               ///< front entries per task: node pairs, or record pairs ÷ 4 on the wide front
     bool prune = true;             ///< collapse non-overlapping siblings back into their parent
     double rebuild_growth = 2.0;   ///< rebuild when the front exceeds this × its size after the last rebuild (0 = never)
     int rebuild_every = 0;         ///< also rebuild every N steps (0 = never)
@@ -31,12 +35,20 @@ class FrontScheduler final : public TraversalScheduler {
 
  private:
   struct PassFront {
-    std::vector<std::vector<FrontNode>> pieces;
-    std::size_t size = 0;
+    std::vector<std::vector<FrontNode>> pieces;           ///< the binary front
+    std::vector<std::vector<WideFrontGroup>> wide_pieces;  ///< or the wide one
+    const WideLayout* layout_a = nullptr;  ///< the wide front's layouts (its record ids mean nothing without them)
+    const WideLayout* layout_b = nullptr;
+    std::size_t size = 0;  ///< node pairs on the cut
     std::size_t size_after_rebuild = 0;
     std::uint64_t bvh_version = 0;  ///< of the BVHs it was built on: a restructured BVH invalidates the front
     int steps_since_rebuild = 0;
   };
+  /// One step of a front: its pieces cut into tasks of at most `chunk` entries, `process` on threads, the new
+  /// pieces kept and counted.
+  template <class Entry, class Process>
+  void run(const TraversalPass& pass, PassFront& front, std::vector<std::vector<Entry>>& pieces, std::size_t chunk,
+           TraversalOutput& out, PhaseTrace& trace, Process&& process);
   Params params_{};
   std::map<int, PassFront> fronts_;  ///< by TraversalPass::id
 };
