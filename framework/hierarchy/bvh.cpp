@@ -109,11 +109,12 @@ WideLayout WideLayout::of(const BvhTopology& bvh, const std::vector<Face>& faces
   Index inner = 0;
   for (Index i = 0; i < bvh.size(); ++i) w.slot[i] = bvh.nodes[i].is_leaf() ? ~bvh.nodes[i].face : inner++;
   w.lanes.reserve(std::size_t(inner));
-  w.owner.reserve(std::size_t(inner) + 1);
+  std::vector<Index> owner;
+  owner.reserve(std::size_t(inner) + 1);
   for (Index i = 0; i < bvh.size(); ++i) {
     const BvhNode& n = bvh.nodes[i];
     if (n.is_leaf()) continue;
-    w.owner.push_back(i);
+    owner.push_back(i);
     Lanes l;
     l.node.fill(-1);
     l.slot.fill(kNoSlot);
@@ -142,7 +143,7 @@ WideLayout WideLayout::of(const BvhTopology& bvh, const std::vector<Face>& faces
     for (int j = 0; j < kWidth; ++j)
       if (top.node[j] >= 0) top.slot[j] = w.slot[top.node[j]];
     w.lanes.push_back(top);
-    w.owner.push_back(-1);
+    owner.push_back(-1);
   }
   for (Lanes& l : w.lanes)
     for (int j = 0; j < kWidth; ++j)
@@ -154,6 +155,8 @@ WideLayout WideLayout::of(const BvhTopology& bvh, const std::vector<Face>& faces
       const Index c = w.lanes[r].node[j];
       if (c >= 0 && w.home[c] < 0) w.home[c] = r * kWidth + j;
     }
+  w.owner_home.resize(owner.size());
+  for (std::size_t r = 0; r < owner.size(); ++r) w.owner_home[r] = owner[r] >= 0 ? w.home[std::size_t(owner[r])] : -1;
   return w;
 }
 

@@ -56,9 +56,10 @@ struct WideLayout {
   /// Per node: a lane that holds it, as record · kWidth + lane. A traversal reads a node's k-DOP there, in a
   /// record it has just opened, instead of in the binary array (where the wide walk's reads missed the cache).
   UninitializedVector<Index> home;
-  /// Per wide node: the inner node it belongs to (slot[owner[r]] == r), −1 for the top record. The wide front
-  /// (bvtt_wide_front.hpp) prunes a record pair's lane pairs back into the pair of their owners.
-  UninitializedVector<Index> owner;
+  /// Per wide node: the home of the inner node it belongs to (the node n with slot[n] == r), −1 for the top
+  /// record. The wide front (bvtt_wide_front.hpp) prunes a record pair's lane pairs back into their owners' pair,
+  /// whose k-DOPs it reads there.
+  UninitializedVector<Index> owner_home;
 
   /// Cuts the layout of `bvh` (every inner node gets a slot, in node order); `faces` are the mesh's (the leaves'
   /// vertex ids).
@@ -66,7 +67,7 @@ struct WideLayout {
   /// The record of the root and its children (lanes.size() − 1); only their homes point into it.
   [[nodiscard]] Index top() const { return Index(lanes.size()) - 1; }
   [[nodiscard]] std::size_t memory_bytes() const {
-    return (slot.size() + home.size() + owner.size()) * sizeof(Index) + lanes.size() * sizeof(Lanes);
+    return (slot.size() + home.size() + owner_home.size()) * sizeof(Index) + lanes.size() * sizeof(Lanes);
   }
 };
 

@@ -211,7 +211,8 @@ struct LanePairCursor {
 
 /// What one pair visit found among its `allowed` lane pairs (bit 4i + j: lane i of record a, lane j of record b).
 struct LanePairAnswer {
-  unsigned hit;       ///< overlapping lane pairs
+  unsigned all;       ///< every overlapping lane pair of the two records, allowed or not
+  unsigned hit;       ///< overlapping lane pairs (allowed)
   unsigned down;      ///< overlapping lane pairs with an inner side: pushed as children
   unsigned adjacent;  ///< overlapping leaf pairs of faces that share a vertex (self passes): never candidates
 };
@@ -230,7 +231,8 @@ CCDLAB_AVX512_TARGET __attribute__((always_inline)) inline LanePairAnswer visit_
   const __m512i rows = CCDLAB_LANE_ROWS;  // lane 4i + j: row i (a's lane), column j (b's lane)
   const __m512i cols = _mm512_set_epi32(3, 2, 1, 0, 3, 2, 1, 0, 3, 2, 1, 0, 3, 2, 1, 0);
   const auto load4 = [](const Index* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); };
-  const unsigned hit = overlapping_lane_pairs(A, B) & allowed;
+  const unsigned all = overlapping_lane_pairs(A, B);
+  const unsigned hit = all & allowed;
   // Each lane pair's slots; a slot < 0 is a leaf (~face).
   const __m512i sa = _mm512_permutexvar_epi32(rows, _mm512_castsi128_si512(load4(A.lanes.slot.data())));
   const __m512i sb = _mm512_broadcast_i32x4(load4(B.lanes.slot.data()));
@@ -275,7 +277,7 @@ CCDLAB_AVX512_TARGET __attribute__((always_inline)) inline LanePairAnswer visit_
     _mm512_storeu_si512(cur.col_wb + cur.top, _mm512_maskz_compress_epi32(m, sb));
     cur.top += std::size_t(std::popcount(down));
   }
-  return {hit, down, adjacent};
+  return {all, hit, down, adjacent};
 }
 
 /// The lane pairs a visit of stack entry (ha, hb, wa, wb) tests: all used lanes of an inner side's record, a leaf

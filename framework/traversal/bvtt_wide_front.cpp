@@ -4,11 +4,11 @@
 
 namespace ccdlab {
 
-std::vector<WideFrontGroup> wide_front_seeds(const BvhTopology& a, const WideLayout& la, const BvhTopology& b,
+WideFrontPiece wide_front_seeds(const BvhTopology& a, const WideLayout& la, const BvhTopology& b,
                                              const WideLayout& lb, bool self, BvttNode root, double granularity,
                                              double min_pairs) {
   constexpr int W = WideLayout::kWidth;
-  std::vector<WideFrontGroup> front;
+  WideFrontPiece front;
   if (a.nodes.empty() || b.nodes.empty()) return front;
   const double na = a.num_leaves(), nb = b.num_leaves();
   const double max_pairs = std::max(min_pairs, (self ? na * (na - 1) / 2 : na * nb) / granularity);
@@ -17,7 +17,7 @@ std::vector<WideFrontGroup> wide_front_seeds(const BvhTopology& a, const WideLay
     if (!front.empty() && front.back().ra == hx / W && front.back().rb == hy / W)
       front.back().cut = std::uint16_t(front.back().cut | bit);
     else
-      front.push_back(WideFrontGroup{hx / W, hy / W, std::uint16_t(bit), 0});
+      front.push_back(WideFrontGroup{hx / W, hy / W, std::uint16_t(bit), 0, 0});
   };
   struct Side {
     Index node, home;
@@ -61,7 +61,7 @@ std::vector<WideFrontGroup> wide_front_seeds(const BvhTopology& a, const WideLay
   return front;
 }
 
-void append_wide_front_nodes(const WideLayout& la, const WideLayout& lb, const std::vector<WideFrontGroup>& groups,
+void append_wide_front_nodes(const WideLayout& la, const WideLayout& lb, const WideFrontPiece& groups,
                              std::vector<FrontNode>& out) {
   constexpr int W = WideLayout::kWidth;
   for (const WideFrontGroup& g : groups)

@@ -18,10 +18,13 @@
 //           records (a leaf side stays itself): exactly its leaf pairs, so the cut stays a cut.
 //   PRUNE   a carried-over group none of whose lane pairs overlaps, whose mask is every lane pair of a node pair's
 //           visit (all used lanes of a record whose owner is x, or the one lane of a leaf x; likewise y; not two
-//           single leaves, which is the node itself; in self passes x and y disjoint sub-trees), is replaced by
+//           single leaves, which is the node itself), is replaced by
 //           that node pair (x, y) — one more BV test — when (x, y) does not overlap either: its lane pair in the
 //           records holding x and y, merged into the group just written when that is the same two records,
 //           which may prune in turn. (x, y) covers exactly the group's leaf pairs, so the cut stays a cut.
+//           (x, y)'s answer is usually known already: it is a lane pair of the visit that made the group, whose
+//           16 answers a small cache of this step's visits keeps; a failed prune then costs no BV test, and the
+//           group waits kPruneWait steps before it tries again.
 //   REBUILD from seeds (wide_front_seeds), as the binary front does.
 // Exactness: a leaf pair is a candidate iff its k-DOPs overlap. Every non-adjacent leaf pair lies below exactly
 // one cut node; refit makes every node's k-DOP the union of its leaves', so an overlapping leaf pair's cut node
@@ -41,21 +44,28 @@ struct WideFrontGroup {
   Index ra;  ///< record of side a
   Index rb;  ///< record of side b
   std::uint16_t cut;   ///< lane pairs on the cut: bit 4i + j, lane i of ra and lane j of rb
-  std::uint8_t quiet;  ///< while a step writes it: carried over, and none of its lane pairs overlapped (may prune)
-  std::uint8_t unused = 0;
+  std::uint8_t quiet;       ///< while a step writes it: carried over, none of its lane pairs overlapped (may prune)
+  std::uint8_t prune_wait;  ///< steps before its next prune attempt (its node pair overlapped at the last one)
 };
+/// Steps a group waits after a failed prune attempt. Attempting at every step cost rod-twist's steady front
+/// ~4.5 of 27 ms (docs/schedulers.md); a wait delays a prune by at most this many steps, never an answer.
+inline constexpr std::uint8_t kPruneWait = 8;
+/// The wait of a group that is no node pair's whole visit: until its mask changes (which resets every wait).
+inline constexpr std::uint8_t kNoPruneWhileSame = 255;
+/// A piece of the front, written in place (uninitialized growth: a piece is rewritten whole every step).
+using WideFrontPiece = UninitializedVector<WideFrontGroup>;
 static_assert(sizeof(WideFrontGroup) == 12, "a group is 3 words: keep the front compact");
 
 /// The front a rebuild starts from, covering the BVTT below `root` (the whole BVTT, or one slice): (L, R) for
 /// every inner node under a self node, the node itself otherwise, each split into the lane pairs of its visit
 /// (without a BV test: they cover the same leaf pairs) until it covers at most 1/`granularity` of the pass's leaf
 /// pairs (and no fewer than `min_pairs`), so that the first step's sprouts are spread over many tasks.
-std::vector<WideFrontGroup> wide_front_seeds(const BvhTopology& a, const WideLayout& la, const BvhTopology& b,
+WideFrontPiece wide_front_seeds(const BvhTopology& a, const WideLayout& la, const BvhTopology& b,
                                              const WideLayout& lb, bool self, BvttNode root = {0, 0},
                                              double granularity = 512, double min_pairs = 4096);
 
 /// The front's cut node pairs as binary node ids (flags 0), appended to `out`: for tests and `ccdlab export`.
-void append_wide_front_nodes(const WideLayout& la, const WideLayout& lb, const std::vector<WideFrontGroup>& groups,
+void append_wide_front_nodes(const WideLayout& la, const WideLayout& lb, const WideFrontPiece& groups,
                              std::vector<FrontNode>& out);
 
 #if defined(CCDLAB_HAS_AVX512_WALK)
@@ -64,15 +74,13 @@ void append_wide_front_nodes(const WideLayout& la, const WideLayout& lb, const s
 /// balance, not to be merged back at once) or when the scheduler says so.
 template <class BV>
 CCDLAB_AVX512_TARGET void process_wide_front(const BvttView<BV>& v, const WideFrontGroup* begin,
-                                             const WideFrontGroup* end, bool prune, std::vector<WideFrontGroup>& next,
+                                             const WideFrontGroup* end, bool prune, WideFrontPiece& next,
                                              FacePairs& pairs, LanePairStack& stack, FrontCounters& counters) {
   constexpr int W = WideLayout::kWidth;
   const WideBounds<BV>* const wide_a = v.wide_a->data();
   const WideBounds<BV>* const wide_b = v.wide_b->data();
   const WideLayout& la = *v.wide_layout_a;
   const WideLayout& lb = *v.wide_layout_b;
-  const BV* const bva = v.bv_a->data();
-  const BV* const bvb = v.bv_b->data();
   const bool self = v.self;
   FrontCounters c;  // local: the caller's are written once, at the end
   LanePairCursor cur{nullptr, nullptr, nullptr, nullptr, 0, nullptr};
@@ -95,57 +103,90 @@ CCDLAB_AVX512_TARGET void process_wide_front(const BvttView<BV>& v, const WideFr
       pend = pairs.data() + pairs.size();
     }
   };
-  // The node pair whose visit tests exactly g's lane pairs (see PRUNE above): its ids and homes, or false.
-  const auto whole_visit_of = [&](const WideFrontGroup& g, Index& x, Index& y, Index& hx, Index& hy) {
+  // The homes of the node pair whose visit tests exactly g's lane pairs (see PRUNE above), or false. No
+  // sub-tree test is needed in self passes: a cut holds pair nodes only, and if x held y (or x == y) some lane
+  // pair of x's record and y's would hold one side inside the other.
+  const auto whole_visit_of = [&](const WideFrontGroup& g, Index& hx, Index& hy) {
     const unsigned cut = g.cut;
     unsigned rows = 0;
     for (int i = 0; i < W; ++i) rows |= unsigned((cut >> (W * i) & 0xFu) != 0) << i;
     const unsigned cols = (cut | cut >> 4 | cut >> 8 | cut >> 12) & 0xFu;
     if (cut != (lane_rows_mask(rows) & (cols * 0x1111u))) return false;
-    const auto side = [&](const WideLayout& l, const WideBounds<BV>& rec, Index r, unsigned lanes, Index& n,
-                          Index& h) {
-      if (lanes == (1u << used_lanes(rec)) - 1) {  // every lane: the record's owner
-        n = l.owner[std::size_t(r)];
-        if (n < 0) return -1;  // the top record is nobody's
-        h = l.home[std::size_t(n)];
-        return 1;
+    const auto side = [&](const WideLayout& l, const WideBounds<BV>& rec, Index r, unsigned lanes, Index& h) {
+      if (lanes == (1u << used_lanes(rec)) - 1) {  // every lane: the record's owner (the top record is nobody's)
+        h = l.owner_home[std::size_t(r)];
+        return h >= 0 ? 1 : -1;
       }
       const int j = std::countr_zero(lanes);
       if (std::popcount(lanes) != 1 || rec.lanes.slot[std::size_t(j)] >= 0) return -1;
-      n = l.lanes[std::size_t(r)].node[std::size_t(j)], h = r * W + j;  // a leaf side stays itself
+      h = r * W + j;  // a leaf side stays itself
       return 0;
     };
-    const int inner_a = side(la, wide_a[g.ra], g.ra, rows, x, hx);
-    const int inner_b = side(lb, wide_b[g.rb], g.rb, cols, y, hy);
-    if (inner_a < 0 || inner_b < 0 || inner_a + inner_b == 0) return false;
-    if (self) {  // (x, y) must be a pair node: neither sub-tree holds the other
-      const BvhTopology& t = *v.bvh_a;
-      if ((y >= x && y < t.subtree_end(x)) || (x >= y && x < t.subtree_end(y))) return false;
+    const int inner_a = side(la, wide_a[g.ra], g.ra, rows, hx);
+    const int inner_b = side(lb, wide_b[g.rb], g.rb, cols, hy);
+    return inner_a >= 0 && inner_b >= 0 && inner_a + inner_b > 0;
+  };
+  // The next front's groups: written in place like the candidates (at most one more per visit).
+  std::size_t written = next.size();
+  next.resize(std::max<std::size_t>(next.capacity(), written + 256));
+  WideFrontGroup* gbase = next.data();
+  WideFrontGroup* gout = gbase + written;
+  WideFrontGroup* gend = gbase + next.size();
+  const auto room_for_group = [&] {
+    if (gout == gend) [[unlikely]] {
+      written = std::size_t(gout - gbase);
+      next.resize(2 * next.size());
+      gbase = next.data(), gout = gbase + written, gend = gbase + next.size();
     }
-    return true;
+  };
+  // This step's recent visits: their records and all 16 answers, direct-mapped (the answers cannot change within
+  // a step). A quiet group's parent visit is usually among them.
+  struct Seen {
+    Index ra = -1, rb = -1;
+    unsigned all = 0;
+  };
+  constexpr unsigned kSeen = 256;
+  Seen seen[kSeen];
+  const auto seen_slot = [](Index ra, Index rb) { return (unsigned(ra) * 2654435761u + unsigned(rb)) >> 24 & (kSeen - 1); };
+  const auto remember = [&](Index ra, Index rb, unsigned all) { seen[seen_slot(ra, rb)] = Seen{ra, rb, all}; };
+  // Does the lane pair at homes hx, hy overlap? From the cache, else one BV test.
+  const auto lane_pair_overlaps = [&](Index hx, Index hy) {
+    const Seen& s = seen[seen_slot(hx / W, hy / W)];
+    if (s.ra == hx / W && s.rb == hy / W) return (s.all >> (W * (hx % W) + hy % W) & 1u) != 0;
+    ++c.bv_tests;
+    return (overlapping_lanes(wide_b[hy / W], WideLane<BV>{wide_a + hx / W, hx % W}) >> (hy % W) & 1u) != 0;
   };
   // Appends a group, merged into the last one when it holds the same two records; then, while the last group is
   // quiet and is one node pair's whole visit, and that node pair does not overlap, prunes it into that node pair.
-  const auto push_group = [&](Index ra, Index rb, unsigned cut, bool quiet) {
+  const auto push_group = [&](Index ra, Index rb, unsigned cut, bool quiet, std::uint8_t wait) {
     if (!cut) return;
-    if (!next.empty() && next.back().ra == ra && next.back().rb == rb) {
-      next.back().cut = std::uint16_t(next.back().cut | cut);
-      next.back().quiet &= std::uint8_t(quiet);
+    if (gout != gbase && gout[-1].ra == ra && gout[-1].rb == rb) {
+      gout[-1].cut = std::uint16_t(gout[-1].cut | cut);
+      gout[-1].quiet &= std::uint8_t(quiet);
+      gout[-1].prune_wait = std::min(gout[-1].prune_wait, wait);
     } else {
-      next.push_back(WideFrontGroup{ra, rb, std::uint16_t(cut), std::uint8_t(quiet)});
+      room_for_group();
+      *gout++ = WideFrontGroup{ra, rb, std::uint16_t(cut), std::uint8_t(quiet), wait};
     }
-    while (prune && next.back().quiet) {
-      Index x, y, hx, hy;
-      if (!whole_visit_of(next.back(), x, y, hx, hy)) break;
-      ++c.bv_tests;
-      if (bva[x].overlaps(bvb[y])) break;
-      next.pop_back();
+    while (prune && gout[-1].quiet && gout[-1].prune_wait == 0) {
+      Index hx, hy;
+      if (!whole_visit_of(gout[-1], hx, hy)) {  // not one node pair's visit until its mask changes
+        gout[-1].prune_wait = kNoPruneWhileSame;
+        break;
+      }
+      if (lane_pair_overlaps(hx, hy)) {
+        gout[-1].prune_wait = kPruneWait;
+        break;
+      }
+      --gout;
       ++c.pruned;
       const unsigned bit = 1u << (W * (hx % W) + hy % W);
-      if (!next.empty() && next.back().ra == hx / W && next.back().rb == hy / W)
-        next.back().cut = std::uint16_t(next.back().cut | bit);  // its quiet flag stands: (x, y) is quiet
-      else
-        next.push_back(WideFrontGroup{hx / W, hy / W, std::uint16_t(bit), 1});
+      if (gout != gbase && gout[-1].ra == hx / W && gout[-1].rb == hy / W) {
+        gout[-1].cut = std::uint16_t(gout[-1].cut | bit);  // its quiet flag stands: (x, y) is quiet
+        gout[-1].prune_wait = 0;  // a new mask: its own node pair may be whole now
+      } else {
+        *gout++ = WideFrontGroup{hx / W, hy / W, std::uint16_t(bit), 1, 0};
+      }
     }
   };
   for (const WideFrontGroup* g = begin; g != end; ++g) {
@@ -163,8 +204,11 @@ CCDLAB_AVX512_TARGET void process_wide_front(const BvttView<BV>& v, const WideFr
     c.bv_tests += unsigned(std::popcount(allowed));
     room_for_visit();
     const LanePairAnswer kept = visit_lane_pairs(wide_a[g->ra], wide_b[g->rb], g->ra, g->rb, allowed, self, cur);
+    remember(g->ra, g->rb, kept.all);
     c.sprouted += unsigned(std::popcount(kept.down));
-    push_group(g->ra, g->rb, g->cut & ~kept.down & ~kept.adjacent, kept.hit == 0 && held == 0);
+    const unsigned cut = g->cut & ~kept.down & ~kept.adjacent;
+    const std::uint8_t wait = cut != g->cut || g->prune_wait == 0 ? 0 : std::uint8_t(g->prune_wait - 1);
+    push_group(g->ra, g->rb, cut, kept.hit == 0 && held == 0 && wait == 0, wait);
     // Sprouts: the walk below every lane pair pushed, each visit leaving the group of what it did not descend.
     while (cur.top > 0) {
       --cur.top;
@@ -175,7 +219,8 @@ CCDLAB_AVX512_TARGET void process_wide_front(const BvttView<BV>& v, const WideFr
       c.bv_tests += unsigned(std::popcount(lanes));
       room_for_visit();
       const LanePairAnswer a = visit_lane_pairs(wide_a[ra], wide_b[rb], ra, rb, lanes, self, cur);
-      push_group(ra, rb, lanes & ~a.down & ~a.adjacent, false);
+      remember(ra, rb, a.all);
+      push_group(ra, rb, lanes & ~a.down & ~a.adjacent, false, 0);
     }
     // The next group's records, asked for early (the front is read in order; its records are scattered).
     if (g + 2 < end) {
@@ -185,6 +230,7 @@ CCDLAB_AVX512_TARGET void process_wide_front(const BvttView<BV>& v, const WideFr
     }
   }
   pairs.resize(std::size_t(cur.pout - pairs.data()));
+  next.resize(std::size_t(gout - gbase));
   counters.bv_tests += c.bv_tests;
   counters.visited += c.visited;
   counters.sprouted += c.sprouted;

@@ -15,7 +15,7 @@ struct Segment {
 
 /// Node pairs on the cut held by a piece of the front.
 std::size_t cut_nodes(const std::vector<FrontNode>& piece) { return piece.size(); }
-std::size_t cut_nodes(const std::vector<WideFrontGroup>& piece) {
+std::size_t cut_nodes(const WideFrontPiece& piece) {
   std::size_t n = 0;
   for (const WideFrontGroup& g : piece) n += std::size_t(std::popcount(unsigned(g.cut)));
   return n;
@@ -29,9 +29,11 @@ struct FrontLocal {
 
 }  // namespace
 
-template <class Entry, class Process>
-void FrontScheduler::run(const TraversalPass& pass, PassFront& front, std::vector<std::vector<Entry>>& pieces,
-                         std::size_t chunk, TraversalOutput& out, PhaseTrace& trace, Process&& process) {
+template <class Piece, class Process>
+void FrontScheduler::run(const TraversalPass& pass, PassFront& front, std::vector<Piece>& pieces,
+                         std::vector<Piece>& spare, std::size_t chunk, TraversalOutput& out, PhaseTrace& trace,
+                         Process&& process) {
+  using Entry = typename Piece::value_type;
   const auto t_serial = Clock::now();
   // Tasks: consecutive pieces cut into runs of at most `chunk` entries.
   std::vector<std::vector<Segment>> tasks;
@@ -45,14 +47,18 @@ void FrontScheduler::run(const TraversalPass& pass, PassFront& front, std::vecto
       b = e;
     }
   const int threads = pass.threads;
-  std::vector<PerThread<std::vector<Entry>>> next(tasks.size());  // padded: neighbours written concurrently
+  std::vector<PerThread<Piece>> next(tasks.size());  // padded: neighbours written concurrently
+  for (std::size_t t = 0; t < std::min(tasks.size(), spare.size()); ++t) {
+    next[t].value = std::move(spare[t]);
+    next[t].value.clear();
+  }
   std::vector<std::size_t> nodes(tasks.size());
   std::vector<PerThread<FrontLocal>> local(threads);
   out.pairs.use_parts(threads);
   trace.serial_ms += ms_between(t_serial, Clock::now());
 
   parallel_chunks(tasks.size(), 1, threads, trace, [&](std::size_t t, std::size_t, int tid) {
-    std::vector<Entry>& piece = next[t].value;
+    Piece& piece = next[t].value;
     piece.reserve(chunk + chunk / 4);
     for (const Segment& s : tasks[t]) {
       const Entry* entries = pieces[s.piece].data();
@@ -63,6 +69,7 @@ void FrontScheduler::run(const TraversalPass& pass, PassFront& front, std::vecto
   });
 
   const auto t_merge = Clock::now();
+  spare = std::move(pieces);
   pieces.resize(next.size());
   front.size = 0;
   for (std::size_t t = 0; t < next.size(); ++t) {
@@ -81,7 +88,7 @@ void FrontScheduler::run(const TraversalPass& pass, PassFront& front, std::vecto
   for (const auto& piece : pieces) entries += piece.size();
   out.stats.tasks += tasks.size();
   out.stats.front_nodes += front.size;
-  out.stats.front_bytes += entries * sizeof(Entry) + pieces.size() * sizeof(std::vector<Entry>);
+  out.stats.front_bytes += entries * sizeof(Entry) + pieces.size() * sizeof(Piece);
   trace.serial_ms += ms_between(t_merge, Clock::now());
 }
 
@@ -106,6 +113,8 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
       front.bvh_version = version;
       front.pieces.clear();
       front.wide_pieces.clear();
+      front.spare.clear();
+      front.wide_spare.clear();
       if (wide) {
         front.layout_a = view.wide_layout_a, front.layout_b = view.wide_layout_b;
         front.wide_pieces.assign(1, wide_front_seeds(*pass.bvh_a, *view.wide_layout_a, *pass.bvh_b,
@@ -124,13 +133,13 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
     if (wide) {
       // Seeds are split for balance: not merged back in the step that made them.
       const bool prune = params_.prune && !rebuild;
-      run(pass, front, front.wide_pieces, std::max<std::size_t>(1, chunk / 4), out, trace,
-          [&](const WideFrontGroup* b, const WideFrontGroup* e, std::vector<WideFrontGroup>& next, FacePairs& pairs,
+      run(pass, front, front.wide_pieces, front.wide_spare, std::max<std::size_t>(1, chunk / 4), out, trace,
+          [&](const WideFrontGroup* b, const WideFrontGroup* e, WideFrontPiece& next, FacePairs& pairs,
               FrontLocal& l) { process_wide_front(view, b, e, prune, next, pairs, l.stack.lane_pairs, l.counters); });
       return;
     }
 #endif
-    run(pass, front, front.pieces, chunk, out, trace,
+    run(pass, front, front.pieces, front.spare, chunk, out, trace,
         [&](const FrontNode* b, const FrontNode* e, std::vector<FrontNode>& next, FacePairs& pairs, FrontLocal& l) {
           process_front(view, b, e, params_.prune, next, pairs, l.stack.binary, l.counters);
         });

@@ -35,8 +35,12 @@ class FrontScheduler final : public TraversalScheduler {
 
  private:
   struct PassFront {
-    std::vector<std::vector<FrontNode>> pieces;           ///< the binary front
-    std::vector<std::vector<WideFrontGroup>> wide_pieces;  ///< or the wide one
+    std::vector<std::vector<FrontNode>> pieces;  ///< the binary front
+    std::vector<WideFrontPiece> wide_pieces;     ///< or the wide one
+    // The pieces of the step before, emptied: the next step writes into them (fresh pieces every step made it
+    // fault and zero a front's worth of pages again).
+    std::vector<std::vector<FrontNode>> spare;
+    std::vector<WideFrontPiece> wide_spare;
     const WideLayout* layout_a = nullptr;  ///< the wide front's layouts (its record ids mean nothing without them)
     const WideLayout* layout_b = nullptr;
     std::size_t size = 0;  ///< node pairs on the cut
@@ -46,9 +50,9 @@ class FrontScheduler final : public TraversalScheduler {
   };
   /// One step of a front: its pieces cut into tasks of at most `chunk` entries, `process` on threads, the new
   /// pieces kept and counted.
-  template <class Entry, class Process>
-  void run(const TraversalPass& pass, PassFront& front, std::vector<std::vector<Entry>>& pieces, std::size_t chunk,
-           TraversalOutput& out, PhaseTrace& trace, Process&& process);
+  template <class Piece, class Process>
+  void run(const TraversalPass& pass, PassFront& front, std::vector<Piece>& pieces, std::vector<Piece>& spare,
+           std::size_t chunk, TraversalOutput& out, PhaseTrace& trace, Process&& process);
   Params params_{};
   std::map<int, PassFront> fronts_;  ///< by TraversalPass::id
 };
