@@ -45,7 +45,7 @@ const SchedulerRegistry& scheduler_registry() {
              return std::make_unique<PhcScheduler>(PhcScheduler::Params{int(p.integer("c"))});
            }});
     r.add({"front", "BVTT front kept across steps, processed in parallel chunks; sprout, prune, rebuild (the paper)",
-           {{"chunk", ParamType::integer, 512LL, "front nodes per task", 1, 1 << 24},
+           {{"chunk", ParamType::integer, 512LL, "front entries per task: node pairs (bv.width 2) or record pairs (4)", 1, 1 << 24},
             {"prune", ParamType::boolean, true, "collapse non-overlapping siblings into their parent", 0, 0},
             {"rebuild_growth", ParamType::real, 2.0, "rebuild when the front grows past this x its rebuilt size (0 = never)", 0, 1e9},
             {"rebuild_every", ParamType::integer, 0LL, "also rebuild every N steps (0 = never)", 0, 1 << 30}},

@@ -1,5 +1,5 @@
 // `ccdlab bench CONFIG.yaml [--set k=v …] [--schedulers LIST] [--threads LIST] [--narrow LIST] [--rounds R]
-//  [--cores LIST]`: every narrow mode × scheduler × thread count on the config's scene (a scalar narrow phase is
+//  [--cores LIST] [--untimed-steps K]`: every narrow mode × scheduler × thread count on the config's scene (a scalar narrow phase is
 // labelled SCHEDULER/scalar), in alternating rounds (A B C …, then … C B A) so drift
 // hits all alike; per configuration the median over rounds of the mean ms per step. Checks that every
 // configuration found the identical contact sets (exit 1 otherwise), reports the counters that explain speed
@@ -106,7 +106,11 @@ int bench_command(const BenchOptions& o) {
   const MeshSequence scene = make_scene(config, reg);
   std::vector<Positions> frames;
   for (int f = 0; f < scene.num_frames(); ++f) frames.push_back(scene.frame(f));  // outside the timing
-  const int steps = scene.num_steps();
+  const int all_steps = scene.num_steps();
+  if (o.untimed_steps < 0 || o.untimed_steps >= all_steps)
+    fail("--untimed-steps: expected an integer from 0 to {} (the scene has {} steps), got {}", all_steps - 1, all_steps,
+         o.untimed_steps);
+  const int steps = all_steps - o.untimed_steps;  // timed and counted per run
 
   std::vector<NarrowMode> narrow_modes;
   for (const auto& n : parse_names(o.narrow)) {
@@ -147,10 +151,11 @@ int bench_command(const BenchOptions& o) {
       double total = 0;
       std::uint64_t hash = contact_set_hash({});
       if (!warmup) m.traces.emplace_back();
-      for (int s = 0; s < steps; ++s) {
+      for (int s = 0; s < all_steps; ++s) {
         StepResult r = pipeline.step(frames[s], frames[s + 1]);
-        total += r.timings.total_ms;
         hash = contact_set_hash(r.contacts, hash);
+        if (s < o.untimed_steps) continue;  // a steady state's first steps: the BVH built, a front grown
+        total += r.timings.total_ms;
         if (warmup) continue;
         if (round == 0) {
           m.bv_tests += r.counters.bv_tests;
@@ -209,7 +214,7 @@ int bench_command(const BenchOptions& o) {
       jsonl(out_path("bench.jsonl"), "output.dir");
   const nlohmann::json config_json = to_json(config);
   jsonl << nlohmann::json{{"type", "config"}, {"config", config_json}, {"git_revision", rev}, {"scene", scene.description()},
-                          {"triangles", scene.topology().num_faces()}, {"steps", steps}, {"rounds", o.rounds},
+                          {"triangles", scene.topology().num_faces()}, {"steps", steps}, {"untimed_steps", o.untimed_steps}, {"rounds", o.rounds},
                           {"cpu", cpu_model()}, {"hardware_threads", std::thread::hardware_concurrency()},
                           {"compiler", build_info::compiler}}
                .dump()
@@ -221,8 +226,8 @@ int bench_command(const BenchOptions& o) {
 
   const std::uint64_t seq_bv = measured[ref].bv_tests;
   if (!o.json) {
-    fmt::print("ccdlab bench {} — {}, {} steps, {} rounds (alternating), rev {}\n", config.name, scene.description(),
-               steps, o.rounds, rev);
+    fmt::print("ccdlab bench {} — {}, {} steps{}, {} rounds (alternating), rev {}\n", config.name, scene.description(),
+               steps, o.untimed_steps > 0 ? fmt::format(" timed after {} untimed", o.untimed_steps) : "", o.rounds, rev);
     fmt::print("k={} tester={}; speed-up against {} x{} = {:.2f} ms/step\n\n", config.k, config.tester.name,
                configs[ref].label(), configs[ref].threads, ref_ms);
     fmt::print("{:>10} {:>3} {:>9} {:>7} {:>9} {:>7} {:>11} {:>6} {:>10} {:>9} {:>9} {:>9} {:>10}\n", "scheduler", "thr",

@@ -77,6 +77,7 @@ struct BenchOptions {
   std::string narrow = "batched";  ///< narrow modes, e.g. "batched,scalar" to measure their ratio side by side
   std::string cores = "1,2,4,8,16,32,64";
   int rounds = 3;
+  int untimed_steps = 0;  ///< the first K steps of every run are run and checked, not timed (a steady state)
   bool json = false;
   bool progress = true;
 };

@@ -92,6 +92,9 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--threads", bench.threads, "comma-separated thread counts")->capture_default_str();
   bench_cmd->add_option("--cores", bench.cores, "simulated core counts")->capture_default_str();
   bench_cmd->add_option("--rounds", bench.rounds, "alternating rounds")->capture_default_str();
+  bench_cmd->add_option("--untimed-steps", bench.untimed_steps,
+                        "run and check the first K steps of every run without timing them (a steady state)")
+      ->capture_default_str();
   bench_cmd->add_flag("--json", bench.json, "print one JSON object instead of the tables");
   bench_cmd->add_flag("--no-progress", bench_no_progress, "no progress line on stderr");
 

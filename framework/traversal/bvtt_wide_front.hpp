@@ -223,9 +223,9 @@ CCDLAB_AVX512_TARGET void process_wide_front(const BvttView<BV>& v, const WideFr
       push_group(ra, rb, lanes & ~a.down & ~a.adjacent, false, 0);
     }
     // The next group's records, asked for early (the front is read in order; its records are scattered).
-    if (g + 2 < end) {
-      const char* ra = reinterpret_cast<const char*>(wide_a + g[2].ra);
-      const char* rb = reinterpret_cast<const char*>(wide_b + g[2].rb);
+    if (g + 5 < end) {
+      const char* ra = reinterpret_cast<const char*>(wide_a + g[5].ra);
+      const char* rb = reinterpret_cast<const char*>(wide_b + g[5].rb);
       for (std::size_t line = 0; line < sizeof(WideBounds<BV>); line += 64) __builtin_prefetch(ra + line), __builtin_prefetch(rb + line);
     }
   }

@@ -133,7 +133,7 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
     if (wide) {
       // Seeds are split for balance: not merged back in the step that made them.
       const bool prune = params_.prune && !rebuild;
-      run(pass, front, front.wide_pieces, front.wide_spare, std::max<std::size_t>(1, chunk / 4), out, trace,
+      run(pass, front, front.wide_pieces, front.wide_spare, chunk, out, trace,
           [&](const WideFrontGroup* b, const WideFrontGroup* e, WideFrontPiece& next, FacePairs& pairs,
               FrontLocal& l) { process_wide_front(view, b, e, prune, next, pairs, l.stack.lane_pairs, l.counters); });
       return;

@@ -20,7 +20,7 @@ namespace ccdlab {
 class FrontScheduler final : public TraversalScheduler {
  public:
   struct Params {
-    int chunk = 512;               ///< front entries per task: node pairs, or record pairs ÷ 4 on the wide front
+    int chunk = 512;               ///< front entries per task: node pairs (binary), or record pairs (wide: ~7 node pairs each)
     bool prune = true;             ///< collapse non-overlapping siblings back into their parent
     double rebuild_growth = 2.0;   ///< rebuild when the front exceeds this × its size after the last rebuild (0 = never)
     int rebuild_every = 0;         ///< also rebuild every N steps (0 = never)

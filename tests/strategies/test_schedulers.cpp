@@ -187,8 +187,13 @@ TEST(FrontScheduler, FrontCoversEveryNonAdjacentLeafPairExactlyOnceAndShrinksWhe
     return x;
   };
   const std::vector<double> gaps{1.0, 0.5, 0.1, 0.0, 0.1, 0.5, 1.0, 1.0};
+  // Width 2: the binary front of node pairs; width 4: the wide front of record pairs (where the CPU has the
+  // lane-pair walk; the binary front elsewhere).
+  for (int width : {2, 4})
   for (bool prune : {true, false}) {
+    SCOPED_TRACE("width " + std::to_string(width) + (prune ? " prune" : " no prune"));
     PipelineStrategies s = make("front", {{"prune", prune}, {"rebuild_growth", 0.0}, {"chunk", 16LL}}, 2);
+    s.width = width;
     auto* front = dynamic_cast<FrontScheduler*>(s.scheduler.get());
     ASSERT_NE(front, nullptr);
     CcdPipeline p(mesh, single_cloth_body(mesh), std::move(s));
