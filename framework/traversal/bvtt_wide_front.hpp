@@ -47,8 +47,8 @@ struct WideFrontGroup {
   std::uint8_t quiet;       ///< while a step writes it: carried over, none of its lane pairs overlapped (may prune)
   std::uint8_t prune_wait;  ///< steps before its next prune attempt (its node pair overlapped at the last one)
 };
-/// Steps a group waits after a failed prune attempt. Attempting at every step cost rod-twist's steady front
-/// ~4.5 of 27 ms (docs/results-scheduling.md); a wait delays a prune by at most this many steps, never an answer.
+/// Steps a group waits after a failed prune attempt: attempting at every step was a large part of the steady
+/// front's cost (docs/results-scheduling.md); a wait delays a prune by at most this many steps, never an answer.
 inline constexpr std::uint8_t kPruneWait = 8;
 /// The wait of a group that is no node pair's whole visit: until its mask changes (which resets every wait).
 inline constexpr std::uint8_t kNoPruneWhileSame = 255;
