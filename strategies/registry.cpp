@@ -53,7 +53,7 @@ const SchedulerRegistry& scheduler_registry() {
              return std::make_unique<FrontScheduler>(FrontScheduler::Params{
                  int(p.integer("chunk")), p.boolean("prune"), p.real("rebuild_growth"), int(p.integer("rebuild_every"))});
            }});
-    r.add({"static", "c*threads sub-tasks split into equal-count chunks per thread, no rebalancing (Grinberg)",
+    r.add({"static", "c*threads sub-tasks fixed per thread before each step: equal-count chunks, then by the last step's costs (Grinberg)",
            {{"c", ParamType::integer, 8LL, "sub-tasks per thread", 1, 100000}},
            [](const ParamValues& p) -> std::unique_ptr<TraversalScheduler> {
              return std::make_unique<StaticScheduler>(StaticScheduler::Params{int(p.integer("c"))});

@@ -11,7 +11,12 @@ double simulate_phase(const PhaseTrace& trace, int cores) {
   const auto& tasks = trace.task_ms;
   double makespan = 0;
   if (!tasks.empty()) {
-    if (trace.distribution == Distribution::static_chunks) {
+    if (trace.distribution == Distribution::static_balanced) {
+      const std::vector<int> thread_of = assign_largest_first(tasks, cores);
+      std::vector<double> load(std::size_t(cores), 0.0);
+      for (std::size_t i = 0; i < tasks.size(); ++i) load[std::size_t(thread_of[i])] += tasks[i];
+      makespan = *std::max_element(load.begin(), load.end());
+    } else if (trace.distribution == Distribution::static_chunks) {
       const std::size_t n = tasks.size();
       for (int c = 0; c < cores; ++c) {
         const std::size_t b = n * std::size_t(c) / std::size_t(cores), e = n * std::size_t(c + 1) / std::size_t(cores);

@@ -71,6 +71,12 @@ class TaskCosts {
       std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return ms_[x] > ms_[y]; });
     return order;
   }
+  /// The threads of `tasks`, fixed before the start (`static`): by their last costs, largest first to the least
+  /// loaded thread, when they are the last step's tasks (`balanced` set); else none (equal-count chunks).
+  [[nodiscard]] std::vector<int> assignment(const std::vector<BvttNode>& tasks, int threads, bool& balanced) const {
+    balanced = same_as_last(tasks);
+    return balanced ? assign_largest_first(ms_, threads) : std::vector<int>{};
+  }
   /// Keeps the costs of `tasks`, handed out in `order`: task_ms[i] is the cost of tasks[order[i]].
   void record(const std::vector<BvttNode>& tasks, const std::vector<std::size_t>& order, const std::vector<double>& task_ms) {
     tasks_ = tasks;
@@ -92,20 +98,25 @@ class TaskCosts {
 /// whichever thread is free, tasks[order[0]] first) or in `threads` equal-count contiguous chunks fixed before
 /// the start. Thread t appends to part t of out.pairs, and hands it over after each task. trace.task_ms[i] is
 /// the cost of tasks[order[i]].
+/// static_balanced: `thread_of[i]` is the thread of tasks[order[i]].
 template <class BV>
 void run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, const std::vector<std::size_t>& order,
-                    int threads, Distribution dist, TraversalOutput& out, PhaseTrace& trace) {
+                    int threads, Distribution dist, TraversalOutput& out, PhaseTrace& trace,
+                    const std::vector<int>* thread_of = nullptr) {
   struct Local {
     std::uint64_t bv_tests = 0;
     BvttStack stack;
   };
   std::vector<PerThread<Local>> local(threads);
   out.pairs.use_parts(threads);
-  parallel_tasks(tasks.size(), threads, dist, trace, [&](std::size_t i, int tid) {
-    Local& l = local[tid].value;
-    traverse_bvtt(v, tasks[order[i]], l.stack, out.pairs.part(tid), l.bv_tests);
-    out.hand_over(tid);
-  });
+  parallel_tasks(
+      tasks.size(), threads, dist, trace,
+      [&](std::size_t i, int tid) {
+        Local& l = local[tid].value;
+        traverse_bvtt(v, tasks[order[i]], l.stack, out.pairs.part(tid), l.bv_tests);
+        out.hand_over(tid);
+      },
+      thread_of);
   for (const auto& l : local) out.bv_tests += l.value.bv_tests;
 }
 
@@ -115,7 +126,8 @@ namespace ccdlab {
 
 /// Breadth-first split of the pass's BVTT into ≥ tasks_per_thread·split_threads tasks (serial, timed as the trace's
 /// serial part), then the tasks on threads. Shared by `phc` (dynamic, ordered by `costs`, which it updates) and
-/// `static` (fixed chunks in breadth-first order: costs == nullptr).
+/// `static` (dist static_balanced: fixed before the start, by `costs` when they are the last step's tasks, else
+/// equal-count chunks in breadth-first order).
 inline void split_and_run(const TraversalPass& pass, int tasks_per_thread, Distribution dist, const char* phase,
                           TraversalOutput& out, std::vector<PhaseTrace>& traces, TaskCosts* costs = nullptr) {
   if (pass.bvh_a->nodes.empty() || pass.bvh_b->nodes.empty()) return;
@@ -128,8 +140,17 @@ inline void split_and_run(const TraversalPass& pass, int tasks_per_thread, Distr
     trace.serial_ms += serial;
     out.stats.serial_ms += serial;
     out.stats.tasks += tasks.size();
-    const std::vector<std::size_t> order = costs ? costs->order(tasks) : TaskCosts().order(tasks);
-    run_bvtt_tasks(view, tasks, order, pass.threads, dist, out, trace);
+    std::vector<std::size_t> order;
+    std::vector<int> thread_of;
+    if (dist == Distribution::static_balanced) {
+      bool balanced = false;
+      thread_of = costs ? costs->assignment(tasks, pass.threads, balanced) : std::vector<int>{};
+      if (!balanced) dist = Distribution::static_chunks;
+      order = TaskCosts().order(tasks);  // breadth-first
+    } else {
+      order = costs ? costs->order(tasks) : TaskCosts().order(tasks);
+    }
+    run_bvtt_tasks(view, tasks, order, pass.threads, dist, out, trace, &thread_of);
     if (costs) costs->record(tasks, order, trace.task_ms);
     traces.push_back(std::move(trace));
   });

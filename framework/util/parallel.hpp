@@ -17,7 +17,28 @@
 namespace ccdlab {
 
 /// How a phase's tasks were distributed, for the simulator.
-enum class Distribution { dynamic, static_chunks };
+///   dynamic         : one at a time to whichever thread is free
+///   static_chunks   : `threads` equal-count contiguous ranges, fixed before the start
+///   static_balanced : fixed before the start by costs known beforehand (a step's costs at the last step):
+///                     largest first, each to the least loaded thread (assign_largest_first)
+enum class Distribution { dynamic, static_chunks, static_balanced };
+
+/// The thread of each task when tasks go, largest `cost` first, to the thread with the least cost so far (ties:
+/// the lower index; the longest-processing-time rule). What `static` does with its tasks' last costs, and what
+/// the simulator replays for a static_balanced phase.
+inline std::vector<int> assign_largest_first(const std::vector<double>& cost, int threads) {
+  std::vector<std::size_t> by_cost(cost.size());
+  for (std::size_t i = 0; i < by_cost.size(); ++i) by_cost[i] = i;
+  std::stable_sort(by_cost.begin(), by_cost.end(), [&](std::size_t x, std::size_t y) { return cost[x] > cost[y]; });
+  std::vector<double> load(std::size_t(std::max(threads, 1)), 0.0);
+  std::vector<int> thread_of(cost.size(), 0);
+  for (std::size_t i : by_cost) {
+    const std::size_t t = std::size_t(std::min_element(load.begin(), load.end()) - load.begin());
+    thread_of[i] = int(t);
+    load[t] += cost[i];
+  }
+  return thread_of;
+}
 
 struct PhaseTrace {
   std::string phase;
@@ -69,11 +90,13 @@ class TaskErrors {
 };
 
 /// Runs task(i, thread) for i in [0, n) on `threads` threads: handed out one at a time to whichever thread is
-/// free (Distribution::dynamic) or as `threads` equal-count contiguous ranges fixed before the start
-/// (Distribution::static_chunks). Records each task's cost and each thread's busy time in `trace`. The one
+/// free (Distribution::dynamic), as `threads` equal-count contiguous ranges fixed before the start
+/// (Distribution::static_chunks), or as `thread_of` says (Distribution::static_balanced). Records each task's cost and each thread's busy time in `trace`. The one
 /// place ccdlab opens an OpenMP region: exceptions come back to the caller (TaskErrors).
+/// static_balanced: `thread_of[i]` is task i's thread (each thread runs its tasks in index order).
 template <class Task>
-void parallel_tasks(std::size_t n, int threads, Distribution dist, PhaseTrace& trace, Task&& task) {
+void parallel_tasks(std::size_t n, int threads, Distribution dist, PhaseTrace& trace, Task&& task,
+                    const std::vector<int>* thread_of = nullptr) {
   using Clock = std::chrono::steady_clock;
   trace.distribution = dist;
   trace.task_ms.assign(n, 0.0);
@@ -89,6 +112,13 @@ void parallel_tasks(std::size_t n, int threads, Distribution dist, PhaseTrace& t
   if (dist == Distribution::dynamic) {
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (std::ptrdiff_t i = 0; i < std::ptrdiff_t(n); ++i) timed(std::size_t(i), omp_get_thread_num());
+  } else if (dist == Distribution::static_balanced && thread_of) {
+#pragma omp parallel num_threads(threads)
+    {
+      const int tid = omp_get_thread_num();
+      for (std::size_t i = 0; i < n; ++i)
+        if ((*thread_of)[i] == tid) timed(i, tid);
+    }
   } else {
 #pragma omp parallel num_threads(threads)
     {

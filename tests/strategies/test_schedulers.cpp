@@ -176,6 +176,27 @@ TEST(Schedulers, ARunSplitForNThreadsCutsTheTasksOfAnNThreadRun) {
   }
 }
 
+// `static` fixes each thread's tasks before a step: equal-count chunks on the first step, then by the last step's
+// costs (the same tasks: same topology and top); the candidates never change.
+TEST(StaticScheduler, FirstStepInChunksThenBalancedByTheLastStepsCosts) {
+  const MeshSequence scene = small_scene();
+  CcdPipeline p(scene.topology(), scene.bodies(), make("static", {}, 2));
+  std::vector<Distribution> seen;
+  Positions x0 = scene.frame(0);
+  for (int i = 0; i < 3; ++i) {
+    const StepResult r = p.step(x0, scene.frame(1));  // the same step again: the same tasks
+    for (const PhaseTrace& t : r.traces)
+      if (t.phase == "traverse" && !t.task_ms.empty()) {
+        seen.push_back(t.distribution);
+        break;
+      }
+  }
+  ASSERT_EQ(seen.size(), 3u);
+  EXPECT_EQ(seen[0], Distribution::static_chunks);
+  EXPECT_EQ(seen[1], Distribution::static_balanced);
+  EXPECT_EQ(seen[2], Distribution::static_balanced);
+}
+
 TEST(FrontScheduler, FrontCoversEveryNonAdjacentLeafPairExactlyOnceAndShrinksWhenContactEnds) {
   // Two parallel sheets (one self-colliding body) that approach, touch and separate again.
   MeshData sheets = test::concat(test::grid(8, 8), test::grid(8, 8));

@@ -21,6 +21,16 @@ TEST(ScheduleSim, StaticChunksDoNotRebalance) {
   EXPECT_DOUBLE_EQ(simulate_phase(t, 2), 5.0);  // 4+1 | 4+1
 }
 
+TEST(ScheduleSim, StaticBalancedAssignsLargestFirstToTheLeastLoadedCore) {
+  // 7 -> core 0; 5 -> core 1; 1 -> core 1 (5 < 7); 1 -> core 1 (6 < 7): loads 7 | 7.
+  EXPECT_EQ(assign_largest_first({5, 1, 7, 1}, 2), (std::vector<int>{1, 1, 0, 1}));
+  EXPECT_EQ(assign_largest_first({3, 3, 3}, 1), (std::vector<int>{0, 0, 0}));
+  PhaseTrace t{"p", Distribution::static_balanced, 0.5, {5, 1, 7, 1}, {}};
+  EXPECT_DOUBLE_EQ(simulate_phase(t, 2), 7.5);
+  t.distribution = Distribution::static_chunks;
+  EXPECT_DOUBLE_EQ(simulate_phase(t, 2), 8.5);  // chunks {5, 1} and {7, 1}
+}
+
 TEST(ScheduleSim, StepSumsPhasesAndSerialPartsStaySerial) {
   std::vector<PhaseTrace> step{{"a", Distribution::dynamic, 2.0, {}, {}},
                                {"b", Distribution::dynamic, 0.5, std::vector<double>(64, 1.0), {}}};

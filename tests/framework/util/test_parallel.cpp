@@ -28,6 +28,21 @@ TEST(Executor, EveryTaskRunsOnceUnderBothDistributions) {
     }
 }
 
+TEST(Executor, StaticBalancedRunsEachTaskOnItsAssignedThread) {
+  for (int threads : {1, 2, 5}) {
+    std::vector<int> thread_of(1000);
+    for (std::size_t i = 0; i < thread_of.size(); ++i) thread_of[i] = int((i * 7) % std::size_t(threads));
+    std::vector<std::atomic<int>> ran_on(thread_of.size());
+    for (auto& r : ran_on) r.store(-1);
+    PhaseTrace trace;
+    parallel_tasks(
+        thread_of.size(), threads, Distribution::static_balanced, trace,
+        [&](std::size_t i, int tid) { ran_on[i].store(tid); }, &thread_of);
+    for (std::size_t i = 0; i < thread_of.size(); ++i) EXPECT_EQ(ran_on[i].load(), thread_of[i]) << i;
+    EXPECT_EQ(trace.distribution, Distribution::static_balanced);
+  }
+}
+
 TEST(Executor, ChunksCoverTheRangeExactly) {
   std::vector<std::atomic<int>> hits(1001);
   PhaseTrace trace;
