@@ -294,7 +294,8 @@ int bench_command(const BenchOptions& o) {
   int probe = cores.front();
   for (int n : cores)
     if (n <= 8) probe = std::max(probe, n);
-  if (!o.json) fmt::print("\nper phase, ms/step at 1 core -> {} simulated cores (serial part):\n", probe);
+  if (!o.json)
+    fmt::print("\nper phase, ms/step at 1 core -> {} simulated cores (serial part); the serial fraction of a step:\n", probe);
   for (std::size_t i = 0; i < measured_configs; ++i) {
     if (configs[i].threads != 1) continue;
     std::map<std::string, std::array<double, 3>> phases;  // 1 core, N cores, serial
@@ -311,10 +312,18 @@ int bench_command(const BenchOptions& o) {
       }
     nlohmann::json row = {{"type", "phases"}, {"scheduler", configs[i].label()}, {"cores", probe}};
     std::string line = fmt::format("{:>10}", configs[i].label());
+    double one_core = 0, serial = 0;
     for (const auto& [name, acc] : phases) {
       row["phases"][name] = {{"ms_1", acc[0]}, {"ms_n", acc[1]}, {"serial_ms", acc[2]}};
       line += fmt::format(" | {} {:.1f}->{:.1f} ({:.1f})", name, acc[0], acc[1], acc[2]);
+      one_core += acc[0], serial += acc[2];
     }
+    // The serial fraction of a step (every phase's part outside its parallel loop, and the phases without one):
+    // Amdahl's bound on the speed-up, whatever the cores.
+    const double fraction = one_core > 0 ? serial / one_core : 0;
+    row["serial_fraction"] = fraction;
+    line += fmt::format(" || serial {:.2f} of {:.1f} ms = {:.1f}% (Amdahl bound {})", serial, one_core, 100 * fraction,
+                        fraction > 0 ? fmt::format("{:.0f}x", 1 / fraction) : std::string("none"));
     jsonl << row.dump() << "\n";
     if (!o.json) fmt::print("{}\n", line);
   }
