@@ -3,6 +3,7 @@
 
 #include "ccdlab/build_info.hpp"
 #include "experiments/cli/commands.hpp"
+#include "framework/geometry/kdop.hpp"
 #include "strategies/registry.hpp"
 
 namespace ccdlab::cli {
@@ -26,7 +27,7 @@ void print_registry(const R& registry, const std::string& title) {
 }  // namespace
 
 int list_command() {
-  fmt::print("bv.k: 6, 14, 18, 26 (k-DOP axis tables in framework/geometry/kdop.hpp)\n\n");
+  fmt::print("bv.k: {} (k-DOP axis tables in framework/geometry/kdop.hpp)\n\n", kKdopKs);
   print_registry(builder_registry(), "hierarchy");
   print_registry(scheduler_registry(), "scheduler");
   print_registry(tester_registry(), "tester");

@@ -5,6 +5,8 @@
 
 #include "experiments/cli/commands.hpp"
 #include "framework/config/strategy_spec.hpp"
+#include "framework/geometry/kdop.hpp"
+#include "framework/hierarchy/wide_bvh.hpp"
 #include "experiments/cli/report.hpp"
 #include "framework/mesh/mesh_io.hpp"
 #include "framework/util/error.hpp"
@@ -25,8 +27,8 @@ StrategyChoice choose(const R& registry, const std::string& option, const std::s
 }  // namespace
 
 int step_command(const StepOptions& o) {
-  if (o.k != 6 && o.k != 14 && o.k != 18 && o.k != 26) fail("--k: expected one of 6, 14, 18, 26, got {}", o.k);
-  if (o.width != 2 && o.width != 4) fail("--bv-width: expected 2 (binary) or 4 (wide), got {}", o.width);
+  if (!is_kdop_k(o.k)) fail("--k: expected one of {}, got {}", kKdopKs, o.k);
+  if (!is_bvh_width(o.width)) fail("--bv-width: expected {}, got {}", kBvhWidths, o.width);
   if (o.threads < 1 || o.threads > kMaxThreads)
     fail("--threads: expected an integer from 1 to {}, got {}", kMaxThreads, o.threads);
   PipelineStrategies s;

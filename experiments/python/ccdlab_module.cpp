@@ -84,10 +84,10 @@ PipelineStrategies strategies_from(const py::kwargs& options) {
     const std::string key = py::str(key_handle);
     if (key == "k") {
       s.k = value.cast<int>();
-      if (s.k != 6 && s.k != 14 && s.k != 18 && s.k != 26) fail("ccdlab.step: k: expected one of 6, 14, 18, 26, got {}", s.k);
+      if (!is_kdop_k(s.k)) fail("ccdlab.step: k: expected one of {}, got {}", kKdopKs, s.k);
     } else if (key == "width") {
       s.width = value.cast<int>();
-      if (s.width != 2 && s.width != 4) fail("ccdlab.step: width: expected 2 (binary) or 4 (wide), got {}", s.width);
+      if (!is_bvh_width(s.width)) fail("ccdlab.step: width: expected {}, got {}", kBvhWidths, s.width);
     } else if (key == "threads") {
       s.threads = value.cast<int>();
       if (s.threads < 1 || s.threads > kMaxThreads) fail("ccdlab.step: threads: expected 1 to {}, got {}", kMaxThreads, s.threads);

@@ -5,6 +5,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "framework/config/yaml_reader.hpp"
+#include "framework/geometry/kdop.hpp"
+#include "framework/hierarchy/wide_bvh.hpp"
 #include "framework/pipeline/memory_budget.hpp"
 #include "framework/util/memory.hpp"
 #include "framework/util/parallel.hpp"
@@ -196,11 +198,11 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
     r.check_keys(root["bv"], "bv", {"k", "width"});
     if (root["bv"]["k"]) {
       c.k = int(r.integer(root["bv"]["k"], "bv.k", 6, 26));
-      if (c.k != 6 && c.k != 14 && c.k != 18 && c.k != 26) r.error(root["bv"]["k"], "bv.k", "one of 6, 14, 18, 26");
+      if (!is_kdop_k(c.k)) r.error(root["bv"]["k"], "bv.k", fmt::format("one of {}", kKdopKs));
     }
     if (root["bv"]["width"]) {
       c.width = int(r.integer(root["bv"]["width"], "bv.width", 2, 4));
-      if (c.width != 2 && c.width != 4) r.error(root["bv"]["width"], "bv.width", "2 (binary) or 4 (wide)");
+      if (!is_bvh_width(c.width)) r.error(root["bv"]["width"], "bv.width", kBvhWidths);
     }
   }
   auto strategy = [&](const char* key, const auto& registry, const std::string& default_name) {

@@ -90,9 +90,13 @@ inline float round_up(double x) {
 }
 }  // namespace detail
 
+/// The K that have axis tables: the one list every config, CLI flag and binding checks bv.k against.
+inline constexpr bool is_kdop_k(int k) { return k == 6 || k == 14 || k == 18 || k == 26; }
+inline constexpr const char* kKdopKs = "6, 14, 18, 26";
+
 template <int K>
 class KDop {
-  static_assert(K == 6 || K == 14 || K == 18 || K == 26, "k-DOPs exist for K = 6, 14, 18, 26");
+  static_assert(is_kdop_k(K), "k-DOPs exist for K = 6, 14, 18, 26");
 
  public:
   static constexpr int k = K;

@@ -29,6 +29,9 @@ namespace ccdlab {
 /// 2.2–3.2× faster than the binary walk and the steady-state step at two threads 1.07–1.36× (docs/wide-bvh.md).
 /// Elsewhere its SSE2 walk costs about what the binary walk does; `bv.width: 2` is the binary BVTT.
 inline constexpr int kDefaultBvhWidth = 4;
+/// The widths a traversal can read: the one rule every config, CLI flag and binding checks bv.width against.
+inline constexpr bool is_bvh_width(int w) { return w == 2 || w == 4; }
+inline constexpr const char* kBvhWidths = "2 (binary) or 4 (wide)";
 
 struct WideLayout {
   static constexpr int kWidth = 4;

@@ -37,7 +37,7 @@ AnyWideBvs make_wide_bvs(int k) {
     case 18: return WideBvs<KDop<18>>{};
     case 26: return WideBvs<KDop<26>>{};
   }
-  fail("bv.k: expected one of 6, 14, 18, 26, got {}", k);
+  fail("bv.k: expected one of {}, got {}", kKdopKs, k);
 }
 
 AnyBvs make_bvs(int k) {
@@ -47,7 +47,7 @@ AnyBvs make_bvs(int k) {
     case 18: return BvArray<KDop<18>>{};
     case 26: return BvArray<KDop<26>>{};
   }
-  fail("bv.k: expected one of 6, 14, 18, 26, got {}", k);
+  fail("bv.k: expected one of {}, got {}", kKdopKs, k);
 }
 
 void compute_face_bvs(const TriMesh& mesh, const Positions& x0, const Positions& x1, double thickness, AnyBvs& out,

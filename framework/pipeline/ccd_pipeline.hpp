@@ -137,7 +137,7 @@ class CcdPipeline {
 /// the machine is refused before it starts.
 std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std::size_t orphan_pairs);
 
-/// An AnyBvs holding an empty vector of KDop<k>; throws Error unless k ∈ {6, 14, 18, 26}.
+/// An AnyBvs holding an empty vector of KDop<k>; throws Error unless is_kdop_k(k).
 AnyBvs make_bvs(int k);
 AnyWideBvs make_wide_bvs(int k);
 
