@@ -16,15 +16,14 @@
 //   SPROUT  overlapping lane pairs with an inner side leave the cut: the walk runs below them, each of its visits
 //           adding the group of what it did not descend. A lane pair's children are the lanes of its inner sides'
 //           records (a leaf side stays itself): exactly its leaf pairs, so the cut stays a cut.
-//   PRUNE   a carried-over group none of whose lane pairs overlaps, whose mask is every lane pair of a node pair's
-//           visit (all used lanes of a record whose owner is x, or the one lane of a leaf x; likewise y; not two
-//           single leaves, which is the node itself), is replaced by
-//           that node pair (x, y) — one more BV test — when (x, y) does not overlap either: its lane pair in the
-//           records holding x and y, merged into the group just written when that is the same two records,
-//           which may prune in turn. (x, y) covers exactly the group's leaf pairs, so the cut stays a cut.
-//           (x, y)'s answer is usually known already: it is a lane pair of the visit that made the group, whose
-//           16 answers a small cache of this step's visits keeps; a failed prune then costs no BV test, and the
-//           group waits kPruneWait steps before it tries again.
+//   PRUNE   a carried-over group none of whose lane pairs overlaps, whose mask is every lane pair of one node
+//           pair's visit (all used lanes of a record whose owner is x, or the one lane of a leaf x; likewise y;
+//           not two single leaves, which is the node itself), is replaced by that node pair (x, y) when (x, y)
+//           does not overlap either: its lane pair in the records holding x and y, merged into the group just
+//           written when that is the same two records, which may prune in turn. (x, y) covers exactly the
+//           group's leaf pairs, so the cut stays a cut. (x, y)'s answer is usually known already: it is a lane
+//           pair of the visit that made the group, whose 16 answers a small cache of this step's visits keeps
+//           (else one BV test); after a failed attempt the group waits kPruneWait steps.
 //   REBUILD from seeds (wide_front_seeds), as the binary front does.
 // Exactness: a leaf pair is a candidate iff its k-DOPs overlap. Every non-adjacent leaf pair lies below exactly
 // one cut node; refit makes every node's k-DOP the union of its leaves', so an overlapping leaf pair's cut node
@@ -50,7 +49,8 @@ struct WideFrontGroup {
 /// Steps a group waits after a failed prune attempt: attempting at every step was a large part of the steady
 /// front's cost (docs/results-scheduling.md); a wait delays a prune by at most this many steps, never an answer.
 inline constexpr std::uint8_t kPruneWait = 8;
-/// The wait of a group that is no node pair's whole visit: until its mask changes (which resets every wait).
+/// The wait of a group that is no node pair's whole visit: until its mask changes (which resets every wait), or
+/// this many steps.
 inline constexpr std::uint8_t kNoPruneWhileSame = 255;
 /// A piece of the front, written in place (uninitialized growth: a piece is rewritten whole every step).
 using WideFrontPiece = UninitializedVector<WideFrontGroup>;
