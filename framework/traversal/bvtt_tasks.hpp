@@ -95,10 +95,10 @@ class TaskCosts {
 };
 
 /// Runs a depth-first traversal below each task on `threads` threads: dynamically (one task at a time to
-/// whichever thread is free, tasks[order[0]] first) or in `threads` equal-count contiguous chunks fixed before
-/// the start. Thread t appends to part t of out.pairs, and hands it over after each task. trace.task_ms[i] is
-/// the cost of tasks[order[i]].
-/// static_balanced: `thread_of[i]` is the thread of tasks[order[i]].
+/// whichever thread is free, tasks[order[0]] first), in `threads` equal-count contiguous chunks fixed before
+/// the start, or on the threads `thread_of` fixes (static_balanced: thread_of[i] runs tasks[order[i]]). Thread t
+/// appends to part t of out.pairs, and hands it over after each task. trace.task_ms[i] is the cost of
+/// tasks[order[i]].
 template <class BV>
 void run_bvtt_tasks(const BvttView<BV>& v, const std::vector<BvttNode>& tasks, const std::vector<std::size_t>& order,
                     int threads, Distribution dist, TraversalOutput& out, PhaseTrace& trace,

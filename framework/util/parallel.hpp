@@ -91,9 +91,9 @@ class TaskErrors {
 
 /// Runs task(i, thread) for i in [0, n) on `threads` threads: handed out one at a time to whichever thread is
 /// free (Distribution::dynamic), as `threads` equal-count contiguous ranges fixed before the start
-/// (Distribution::static_chunks), or as `thread_of` says (Distribution::static_balanced). Records each task's cost and each thread's busy time in `trace`. The one
+/// (Distribution::static_chunks), or task i on thread `thread_of[i]`, each thread in index order
+/// (Distribution::static_balanced). Records each task's cost and each thread's busy time in `trace`. The one
 /// place ccdlab opens an OpenMP region: exceptions come back to the caller (TaskErrors).
-/// static_balanced: `thread_of[i]` is task i's thread (each thread runs its tasks in index order).
 template <class Task>
 void parallel_tasks(std::size_t n, int threads, Distribution dist, PhaseTrace& trace, Task&& task,
                     const std::vector<int>* thread_of = nullptr) {
