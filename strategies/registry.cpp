@@ -23,7 +23,7 @@ const BuilderRegistry& builder_registry() {
     r.add({"median", "top-down, median split of centroids on the widest axis (balanced)", {},
            [](const ParamValues&) -> std::unique_ptr<HierarchyBuilder> { return std::make_unique<MedianBuilder>(); }});
     r.add({"sah", "top-down binned surface-area heuristic (Wald 2007)",
-           {{"bins", ParamType::integer, 16LL, "bins per axis", 2, 256}},
+           {{"bins", ParamType::integer, (long long)SahBuilder::Params{}.bins, "bins per axis", 2, 256}},
            [](const ParamValues& p) -> std::unique_ptr<HierarchyBuilder> {
              return std::make_unique<SahBuilder>(SahBuilder::Params{int(p.integer("bins"))});
            }});
@@ -40,21 +40,21 @@ const SchedulerRegistry& scheduler_registry() {
              return std::make_unique<SequentialScheduler>();
            }});
     r.add({"phc", "breadth-first top until c*threads sub-tasks, then sub-tasks in parallel, dynamic (MCCD)",
-           {{"c", ParamType::integer, 8LL, "sub-tasks per thread", 1, 100000}},
+           {{"c", ParamType::integer, (long long)PhcScheduler::Params{}.tasks_per_thread, "sub-tasks per thread", 1, 100000}},
            [](const ParamValues& p) -> std::unique_ptr<TraversalScheduler> {
              return std::make_unique<PhcScheduler>(PhcScheduler::Params{int(p.integer("c"))});
            }});
     r.add({"front", "BVTT front kept across steps, processed in parallel chunks; sprout, prune, rebuild (the paper)",
-           {{"chunk", ParamType::integer, 512LL, "front entries per task: node pairs (bv.width 2) or record pairs (4)", 1, 1 << 24},
-            {"prune", ParamType::boolean, true, "collapse non-overlapping siblings into their parent", 0, 0},
-            {"rebuild_growth", ParamType::real, 2.0, "rebuild when the front grows past this x its rebuilt size (0 = never)", 0, 1e9},
-            {"rebuild_every", ParamType::integer, 0LL, "also rebuild every N steps (0 = never)", 0, 1 << 30}},
+           {{"chunk", ParamType::integer, (long long)FrontScheduler::Params{}.chunk, "front entries per task: node pairs (bv.width 2) or record pairs (4)", 1, 1 << 24},
+            {"prune", ParamType::boolean, FrontScheduler::Params{}.prune, "collapse non-overlapping siblings into their parent", 0, 0},
+            {"rebuild_growth", ParamType::real, FrontScheduler::Params{}.rebuild_growth, "rebuild when the front grows past this x its rebuilt size (0 = never)", 0, 1e9},
+            {"rebuild_every", ParamType::integer, (long long)FrontScheduler::Params{}.rebuild_every, "also rebuild every N steps (0 = never)", 0, 1 << 30}},
            [](const ParamValues& p) -> std::unique_ptr<TraversalScheduler> {
              return std::make_unique<FrontScheduler>(FrontScheduler::Params{
                  int(p.integer("chunk")), p.boolean("prune"), p.real("rebuild_growth"), int(p.integer("rebuild_every"))});
            }});
     r.add({"static", "c*threads sub-tasks fixed per thread before each step: equal-count chunks, then by the last step's costs (Grinberg)",
-           {{"c", ParamType::integer, 8LL, "sub-tasks per thread", 1, 100000}},
+           {{"c", ParamType::integer, (long long)StaticScheduler::Params{}.tasks_per_thread, "sub-tasks per thread", 1, 100000}},
            [](const ParamValues& p) -> std::unique_ptr<TraversalScheduler> {
              return std::make_unique<StaticScheduler>(StaticScheduler::Params{int(p.integer("c"))});
            }});
@@ -70,25 +70,25 @@ const TesterRegistry& tester_registry() {
   static const TesterRegistry r = [] {
     TesterRegistry r("tester");
     r.add({"float", "cubic coplanarity roots in double, then a proximity check (not conservative)",
-           {{"thickness", ParamType::real, 0.0, "contact distance eta (scene units)", 0, 1e300}},
+           {{"thickness", ParamType::real, FloatTester::Params{}.thickness, "contact distance eta (scene units)", 0, 1e300}},
            [](const ParamValues& p) -> std::unique_ptr<PrimitiveTester> {
              return std::make_unique<FloatTester>(FloatTester::Params{p.real("thickness")});
            }});
     r.add({"filtered", "certified Bernstein non-penetration filter (Tang 2010), then float; zero thickness", {},
            [](const ParamValues&) -> std::unique_ptr<PrimitiveTester> { return std::make_unique<FilteredTester>(); }});
     r.add({"conservative", "interval bisection in time with certified Bernstein bounds: never misses; zero thickness",
-           {{"delta", ParamType::real, 1e-6, "relative tolerance: undecided once features move < delta*size in a window", 0, 1},
+           {{"delta", ParamType::real, ConservativeTester::Params{}.delta, "relative tolerance: undecided once features move < delta*size in a window", 0, 1},
             {"fallback", ParamType::string, std::string("hit"), "what an undecided query becomes: hit or exact", 0, 0, {"hit", "exact"}},
-            {"max_windows", ParamType::integer, 512LL, "time windows per query before the fallback", 1, 1 << 20},
-            {"toi_tolerance", ParamType::real, 1e-6, "width of the time window reported for a hit", 0, 1}},
+            {"max_windows", ParamType::integer, (long long)ConservativeTester::Params{}.max_windows, "time windows per query before the fallback", 1, 1 << 20},
+            {"toi_tolerance", ParamType::real, ConservativeTester::Params{}.toi_tolerance, "width of the time window reported for a hit", 0, 1}},
            [](const ParamValues& p) -> std::unique_ptr<PrimitiveTester> {
              return std::make_unique<ConservativeTester>(ConservativeTester::Params{
                  p.real("delta"), ConservativeTester::parse_fallback(p.string("fallback")), int(p.integer("max_windows")),
                  p.real("toi_tolerance")});
            }});
     r.add({"exact", "reference: exact algebraic roots and signs on GMP integers (CGAL); zero thickness",
-           {{"prefilter", ParamType::boolean, true, "decide certainly separated queries by interval bounds first", 0, 0},
-            {"certify", ParamType::boolean, true, "decide most queries (true contacts too) by interval classification "
+           {{"prefilter", ParamType::boolean, ExactTester::Params{}.prefilter, "decide certainly separated queries by interval bounds first", 0, 0},
+            {"certify", ParamType::boolean, ExactTester::Params{}.certify, "decide most queries (true contacts too) by interval classification "
              "of the coplanarity windows before any algebra", 0, 0}},
            [](const ParamValues& p) -> std::unique_ptr<PrimitiveTester> {
              return std::make_unique<ExactTester>(ExactTester::Params{p.boolean("prefilter"), p.boolean("certify")});

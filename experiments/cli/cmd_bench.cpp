@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <ranges>
 #include <thread>
 
 #include <unistd.h>
@@ -133,6 +134,10 @@ int bench_command(const BenchOptions& o) {
   }
   std::vector<Measured> measured(configs.size());
 
+  // The machine's fork/join cost and bandwidth contention, for the simulator (schedule_sim.hpp): measured on as
+  // many threads as both the machine and the simulated cores have.
+  const int probe_threads = std::max(1, std::min(int(std::thread::hardware_concurrency()), *std::max_element(cores.begin(), cores.end())));
+  const MachineModel machine = probe_machine(probe_threads);
   // Round −1 warms caches, page tables and the OpenMP thread pools; it is not timed into any result.
   Progress progress("ccdlab bench", long((o.rounds + 1) * configs.size()), o.progress);
   long done = 0;
@@ -216,13 +221,14 @@ int bench_command(const BenchOptions& o) {
   jsonl << nlohmann::json{{"type", "config"}, {"config", config_json}, {"git_revision", rev}, {"scene", scene.description()},
                           {"triangles", scene.topology().num_faces()}, {"steps", steps}, {"untimed_steps", o.untimed_steps}, {"rounds", o.rounds},
                           {"cpu", cpu_model()}, {"hardware_threads", std::thread::hardware_concurrency()},
+                          {"machine", {{"fork_join_ms", machine.fork_join_ms}, {"stream_slowdown", machine.stream_slowdown}}},
                           {"compiler", build_info::compiler}}
                .dump()
         << "\n";
   csv << "scheduler,threads,ms_per_step,ms_per_step_min,ms_per_step_max,speedup,speedup_min,bv_tests_per_step,lambda,candidates_per_step,elementary_tests_per_step,"
          "traverse_ms_per_step,serial_ms_per_step,imbalance,front_nodes_max,front_bytes_max,sprouted_per_step,"
          "pruned_per_step,rebuilds,hash,git_revision\n";
-  scaling << "scheduler,cores,predicted_ms_per_step,predicted_speedup,measured_ms_per_step\n";
+  scaling << "scheduler,cores,predicted_ms_per_step,predicted_speedup,measured_ms_per_step,ideal_ms_per_step\n";
 
   const std::uint64_t seq_bv = measured[ref].bv_tests;
   if (!o.json) {
@@ -262,8 +268,13 @@ int bench_command(const BenchOptions& o) {
 
   // Simulated scaling from the 1-thread task costs; validated where a measured run exists.
   nlohmann::json sim_rows = nlohmann::json::array();
-  if (!o.json) fmt::print("\nsimulated ms/step (speed-up vs {} x1) from 1-thread task costs; [measured] where run:\n",
-                          configs[ref].label());
+  if (!o.json) {
+    fmt::print("\nsimulated ms/step (speed-up vs {} x1) from 1-thread task costs, on this machine's fork/join and\n"
+               "bandwidth ({} measured: fork/join {} us, streaming slowdown {}); [measured, error (on the ideal machine)]:\n",
+               configs[ref].label(), probe_threads == 1 ? "1 thread" : fmt::format("1-{} threads", probe_threads),
+               fmt::join(machine.fork_join_ms | std::views::transform([](double ms) { return fmt::format("{:.1f}", 1e3 * ms); }), "/"),
+               fmt::join(machine.stream_slowdown | std::views::transform([](double s) { return fmt::format("{:.2f}", s); }), "/"));
+  }
   for (std::size_t i = 0; i < measured_configs; ++i) {
     if (configs[i].threads != 1) continue;
     std::string line = fmt::format("{:>10}", configs[i].label());
@@ -271,20 +282,25 @@ int bench_command(const BenchOptions& o) {
       std::size_t recorded = i;  // the run split for n threads, where the scheduler's split depends on it
       for (std::size_t j = measured_configs; j < configs.size(); ++j)
         if (configs[j].label() == configs[i].label() && configs[j].split == n) recorded = j;
-      double predicted = 0;
-      for (const auto& step_traces : measured[recorded].median_traces()) predicted += simulate_step(step_traces, n);
+      double predicted = 0, ideal = 0;
+      for (const auto& step_traces : measured[recorded].median_traces()) {
+        predicted += simulate_step(step_traces, n, &machine);
+        ideal += simulate_step(step_traces, n);
+      }
       predicted /= steps;
+      ideal /= steps;
       double measured_ms = -1;
       for (std::size_t j = 0; j < measured_configs; ++j)
         if (configs[j].label() == configs[i].label() && configs[j].threads == n) measured_ms = median(measured[j].ms_per_step);
-      scaling << fmt::format("{},{},{:.4f},{:.4f},{}\n", configs[i].label(), n, predicted, ref_ms / predicted,
-                             measured_ms < 0 ? std::string() : fmt::format("{:.4f}", measured_ms));
+      scaling << fmt::format("{},{},{:.4f},{:.4f},{},{:.4f}\n", configs[i].label(), n, predicted, ref_ms / predicted,
+                             measured_ms < 0 ? std::string() : fmt::format("{:.4f}", measured_ms), ideal);
       sim_rows.push_back({{"scheduler", configs[i].label()}, {"cores", n}, {"predicted_ms_per_step", predicted},
-                          {"predicted_speedup", ref_ms / predicted},
+                          {"predicted_speedup", ref_ms / predicted}, {"ideal_ms_per_step", ideal},
                           {"measured_ms_per_step", measured_ms < 0 ? nlohmann::json() : nlohmann::json(measured_ms)}});
       line += measured_ms < 0 ? fmt::format(" | {}: {:.2f} ({:.2f}x)", n, predicted, ref_ms / predicted)
-                              : fmt::format(" | {}: {:.2f} ({:.2f}x) [{:.2f}, {:+.0f}%]", n, predicted, ref_ms / predicted,
-                                            measured_ms, 100 * (predicted - measured_ms) / measured_ms);
+                              : fmt::format(" | {}: {:.2f} ({:.2f}x) [{:.2f}, {:+.0f}% ({:+.0f}%)]", n, predicted,
+                                            ref_ms / predicted, measured_ms, 100 * (predicted - measured_ms) / measured_ms,
+                                            100 * (ideal - measured_ms) / measured_ms);
     }
     if (!o.json) fmt::print("{}\n", line);
   }
@@ -303,11 +319,11 @@ int bench_command(const BenchOptions& o) {
     for (std::size_t j = measured_configs; j < configs.size(); ++j)
       if (configs[j].label() == configs[i].label() && configs[j].split == probe) recorded = j;
     for (const auto& step_traces : measured[i].median_traces())
-      for (const PhaseTrace& t : step_traces) phases[t.phase][0] += simulate_phase(t, 1) / steps;
+      for (const PhaseTrace& t : step_traces) phases[t.phase][0] += simulate_phase(t, 1, &machine) / steps;
     for (const auto& step_traces : measured[recorded].median_traces())
       for (const PhaseTrace& t : step_traces) {
         auto& acc = phases[t.phase];
-        acc[1] += simulate_phase(t, probe) / steps;
+        acc[1] += simulate_phase(t, probe, &machine) / steps;
         acc[2] += t.serial_ms / steps;
       }
     nlohmann::json row = {{"type", "phases"}, {"scheduler", configs[i].label()}, {"cores", probe}};

@@ -79,15 +79,12 @@ BvhTopology build_top_down(std::span<const Index> faces, std::span<const Box3> f
   }
   const auto t_tasks = std::chrono::steady_clock::now();
   PhaseTrace& trace = exec.trace ? *exec.trace : part;
-  PhaseTrace subtrees;
-  parallel_tasks(tasks.size(), threads, Distribution::dynamic, subtrees,
-                 [&](std::size_t i, int) { build_subtree(tasks[i]); });
+  parallel_tasks(tasks.size(), threads, Distribution::dynamic, trace, [&](std::size_t i, int) { build_subtree(tasks[i]); });
   const auto t_counts = std::chrono::steady_clock::now();
   compute_leaf_counts(bvh);
   // For the simulated cores (schedule_sim.hpp) the levels count as serial: each waits for the one before, and
   // the first is a single split. An overestimate of the serial part, never an underestimate.
   trace.serial_ms += ms_between(t_start, t_tasks) + ms_between(t_counts, std::chrono::steady_clock::now());
-  trace.task_ms.insert(trace.task_ms.end(), subtrees.task_ms.begin(), subtrees.task_ms.end());
   return bvh;
 }
 

@@ -23,9 +23,7 @@ void FeatureBounds::update(const Positions& x_t0, const Positions& x_t1, double 
   });
   AxisRange all;
   for (const AxisRange& r : chunk_range) all.include(r.lo, r.hi);
-  PhaseTrace coarse;
-  update_coarse(all, threads, coarse);
-  trace.task_ms.insert(trace.task_ms.end(), coarse.task_ms.begin(), coarse.task_ms.end());
+  update_coarse(all, threads, trace);
 }
 
 void FeatureBounds::update_coarse(const AxisRange& range, int threads, PhaseTrace& trace) {

@@ -66,10 +66,10 @@ NarrowMode parse_narrow_mode(std::string_view name) {
   fail("narrow.mode: expected 'scalar' or 'batched', got '{}'", name);
 }
 
-void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, int threads, PhaseTrace& trace) {
+void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& bounds) {
   x_t0_ = &x_t0;
   x_t1_ = &x_t1;
-  bounds_.update(x_t0, x_t1, tester_.thickness(), threads, trace);
+  bounds_ = &bounds;
 }
 
 void NarrowPhase::gather(std::span<const FacePair> candidates, FeatureBatch& batch) const {
@@ -88,12 +88,12 @@ void NarrowPhase::gather_orphans(std::span<const VertexFacePair> vf, std::span<c
   std::uint8_t keep[kPiece];
   for (std::size_t b = 0; b < vf.size(); b += kPiece) {
     const auto piece = vf.subspan(b, std::min(kPiece, vf.size() - b));
-    bounds_.vf_keep_coarse(mesh_, piece, keep);
+    bounds_->vf_keep_coarse(mesh_, piece, keep);
     append_kept(piece, keep, batch.vf);
   }
   for (std::size_t b = 0; b < ee.size(); b += kPiece) {
     const auto piece = ee.subspan(b, std::min(kPiece, ee.size() - b));
-    bounds_.ee_keep_coarse(mesh_, piece, keep);
+    bounds_->ee_keep_coarse(mesh_, piece, keep);
     append_kept(piece, keep, batch.ee);
   }
   c.vf_pairs += vf.size();
@@ -125,14 +125,14 @@ void NarrowPhase::run(NarrowScratch& scratch, Contacts& out, NarrowCounters& c, 
     // One pair at a time: the 26-DOP test, then the tester.
     const auto t = Clock::now();
     for (const VertexFacePair& p : batch.vf) {
-      if (cull && !bounds_.vf_may_touch(p.v, mesh_.face(p.f))) {
+      if (cull && !bounds_->vf_may_touch(p.v, mesh_.face(p.f))) {
         ++c.kdop_culled;
         continue;
       }
       test_vf(p.v, p.f, out, c);
     }
     for (const EdgeEdgePair& p : batch.ee) {
-      if (cull && !bounds_.ee_may_touch(mesh_.edge(p.a), mesh_.edge(p.b))) {
+      if (cull && !bounds_->ee_may_touch(mesh_.edge(p.a), mesh_.edge(p.b))) {
         ++c.kdop_culled;
         continue;
       }
@@ -157,11 +157,11 @@ void NarrowPhase::cull_kdop(NarrowScratch& scratch, NarrowCounters& c, bool coar
   const std::size_t nvf = batch.vf.size(), n = nvf + batch.ee.size();
   scratch.keep.resize(n);
   if (coarse) {
-    bounds_.vf_keep_coarse(mesh_, batch.vf, scratch.keep.data());
-    bounds_.ee_keep_coarse(mesh_, batch.ee, scratch.keep.data() + nvf);
+    bounds_->vf_keep_coarse(mesh_, batch.vf, scratch.keep.data());
+    bounds_->ee_keep_coarse(mesh_, batch.ee, scratch.keep.data() + nvf);
   } else {
-    bounds_.vf_keep(mesh_, batch.vf, scratch.keep.data());
-    bounds_.ee_keep(mesh_, batch.ee, scratch.keep.data() + nvf);
+    bounds_->vf_keep(mesh_, batch.vf, scratch.keep.data());
+    bounds_->ee_keep(mesh_, batch.ee, scratch.keep.data() + nvf);
   }
   compact(batch, scratch.keep);
   c.kdop_culled += n - batch.vf.size() - batch.ee.size();

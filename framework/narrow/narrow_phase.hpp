@@ -45,11 +45,10 @@ class NarrowPhase {
   [[nodiscard]] const NarrowOptions& options() const { return options_; }
   [[nodiscard]] const Representatives& representatives() const { return reps_; }
 
-  /// Sets the two frames of the step and bounds every feature over it (stage 1's 26-DOPs).
-  void begin_step(const Positions& x_t0, const Positions& x_t1, int threads, PhaseTrace& trace);
-
-  /// Every vertex's swept 26-DOP over the step (begin_step); the hierarchy's leaves are cut from them too.
-  [[nodiscard]] const FeatureBounds& bounds() const { return bounds_; }
+  /// Sets the two frames of the step and every vertex's swept 26-DOP over it (stage 1's bounds, updated by
+  /// the caller for this step with the tester's thickness: the pipeline's swept volumes). All three must
+  /// outlive the step.
+  void begin_step(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& bounds);
 
   /// Appends the feature pairs the candidates represent to `batch`.
   void gather(std::span<const FacePair> candidates, FeatureBatch& batch) const;
@@ -63,7 +62,6 @@ class NarrowPhase {
 
   [[nodiscard]] VertexFaceQuery vf_query(Index v, Index f) const;
   [[nodiscard]] EdgeEdgeQuery ee_query(Index a, Index b) const;
-  [[nodiscard]] std::size_t memory_bytes() const { return bounds_.memory_bytes(); }
 
  private:
   /// Stage 1 (feature_bounds.hpp): the coarse 16-bit test on every pair first, the float one (the definition)
@@ -78,7 +76,7 @@ class NarrowPhase {
   const PrimitiveTester& tester_;
   NarrowOptions options_;
   Representatives reps_;
-  FeatureBounds bounds_;
+  const FeatureBounds* bounds_ = nullptr;
   const Positions* x_t0_ = nullptr;
   const Positions* x_t1_ = nullptr;
 };

@@ -22,7 +22,9 @@ Contacts brute_force_contacts(const TriMesh& mesh, const CollisionRules& rules, 
   // Every pair, one at a time: the scalar narrow phase on a batch that holds them all.
   NarrowPhase narrow(mesh, tester, {NarrowMode::scalar, RepresentativeRule::fixed}, [](Index) { return false; });
   PhaseTrace trace;
-  narrow.begin_step(x_t0, x_t1, 1, trace);
+  FeatureBounds bounds;
+  bounds.update(x_t0, x_t1, tester.thickness(), 1, trace);
+  narrow.begin_step(x_t0, x_t1, bounds);
   NarrowScratch scratch;
   for (Index v = 0; v < mesh.num_vertices(); ++v) {
     int bv = rules.body_of_vertex(v);

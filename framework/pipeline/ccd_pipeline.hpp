@@ -1,20 +1,25 @@
 #pragma once
-// CcdPipeline: one CCD step, frame i → i+1, wired from the strategies chosen in the config (design.md):
-//   swept face BVs → BVH refit (built once, on the first step) → BVTT traversal (scheduler) → candidate face
-//   pairs → narrow phase (framework/narrow/: feature pairs of candidates and orphans → culling → elementary
-//   tests) → sorted contacts.
+// CcdPipeline: one CCD step, frame i → i+1, wired from the strategies chosen in the config (design.md). Its
+// stages, each in its own home, in data-flow order:
+//   1 swept volumes      every vertex's 26-DOP over the step (swept_volumes.hpp), read by stages 2 and 4
+//   2 body hierarchies   built once, refit, restructured, wide view, normal cones (body_hierarchy.hpp)
+//   3 traversal          the scheduler over every BVTT pass → candidate face pairs (traversal_driver.hpp)
+//   4 narrow phase       candidates and orphans → feature pairs → culling → tests, per thread (narrow_driver.hpp)
+//   5 sorted contacts
 // Only the passes the bodies ask for run: no self pass without self-collision, no pair pass without a
-// second body.
+// second body. Every phase is timed once (phase_clock.hpp).
 #include <memory>
 #include <vector>
 
-#include "framework/hierarchy/bvh.hpp"
-#include "framework/pipeline/bodies.hpp"
-#include "framework/pipeline/memory_budget.hpp"
-#include "framework/pipeline/step_result.hpp"
 #include "framework/narrow/narrow_phase.hpp"
+#include "framework/pipeline/bodies.hpp"
+#include "framework/pipeline/body_hierarchy.hpp"
+#include "framework/pipeline/memory_budget.hpp"
+#include "framework/pipeline/narrow_driver.hpp"
+#include "framework/pipeline/step_result.hpp"
+#include "framework/pipeline/swept_volumes.hpp"
+#include "framework/pipeline/traversal_driver.hpp"
 #include "framework/primitive/tester.hpp"
-#include "framework/traversal/normal_cones.hpp"
 #include "framework/traversal/scheduler.hpp"
 
 namespace ccdlab {
@@ -42,6 +47,10 @@ struct PipelineStrategies {
   std::unique_ptr<HierarchyBuilder> builder;
   std::unique_ptr<TraversalScheduler> scheduler;
   std::unique_ptr<PrimitiveTester> tester;
+
+  /// The one check of a pipeline's configuration, whoever made it (YAML, the CLI, the Python module, a scene's
+  /// ccd_contact effect): throws Error naming the field (YAML checks the same earlier, with its line).
+  void validate() const;
 };
 
 class CcdPipeline {
@@ -54,7 +63,7 @@ class CcdPipeline {
   StepResult step(const Positions& x_t0, const Positions& x_t1);
 
   /// Tests of the ownership rule: record every feature pair considered into StepResult::tested_*.
-  void set_record_tested_pairs(bool on) { record_tested_ = on; }
+  void set_record_tested_pairs(bool on) { narrow_driver_.record_tested(on); }
 
   [[nodiscard]] const TriMesh& mesh() const { return mesh_; }
   [[nodiscard]] const CollisionRules& rules() const { return rules_; }
@@ -63,72 +72,34 @@ class CcdPipeline {
   [[nodiscard]] const PipelineStrategies& strategies() const { return strategies_; }
   /// Keep every candidate of a step for last_candidates() (tests, the quality meter). Off by default: the
   /// narrow phase takes the candidates while the traversal finds them, and no list holds them all.
-  void keep_candidates(bool on) { keep_candidates_ = on; }
+  void keep_candidates(bool on) { traversal_.keep_candidates(on); }
   /// How many candidates a thread gathers before the narrow phase takes them (TraversalOutput::hand_over).
-  void set_hand_over_pairs(std::size_t pairs) { candidates_.hand_over_pairs = std::max<std::size_t>(1, pairs); }
+  void set_hand_over_pairs(std::size_t pairs) { traversal_.set_hand_over_pairs(pairs); }
   /// Candidate face pairs of the last step (unsorted) and their BV test count; throws Error unless
   /// keep_candidates(true) was called before the step.
   [[nodiscard]] const TraversalOutput& last_candidates() const;
   /// BVH of body b (empty before the first step).
-  [[nodiscard]] const BvhTopology& bvh(int body) const { return bodies_[body].bvh; }
+  [[nodiscard]] const BvhTopology& bvh(int body) const { return bodies_[body].bvh(); }
   /// The volumes of body b's BVH nodes, refit in the last step (index = node; a leaf holds its face's swept
   /// volume, which the pipeline stores nowhere else).
-  [[nodiscard]] const AnyBvs& node_bvs(int body) const { return bodies_[body].node_bvs; }
+  [[nodiscard]] const AnyBvs& node_bvs(int body) const { return bodies_[body].node_bvs(); }
   /// The traversal passes (self passes first, then body pairs), whose ids a stateful scheduler keys on.
-  [[nodiscard]] const std::vector<TraversalPass>& passes() const { return passes_; }
+  [[nodiscard]] const std::vector<TraversalPass>& passes() const { return traversal_.passes(); }
   /// Bytes of the pipeline's persistent data (topology, ownership, orphans, BVHs).
   [[nodiscard]] std::size_t memory_bytes() const;
 
  private:
-  struct BodyState {
-    std::vector<Index> faces;
-    BvhTopology bvh;
-    AnyBvs node_bvs;
-    WideLayout wide_layout;  ///< width 4: cut again whenever the topology version changes
-    AnyWideBvs node_wide;    ///< width 4: refit from node_bvs after the binary refit (and restructuring)
-    // Adaptive restructuring units: disjoint sub-trees of ≤ max(64, n/64) leaves, and their reference quality.
-    std::vector<Index> restructure_roots;
-    std::vector<double> quality_ref;
-    std::unique_ptr<NormalConeCuller> cones;  ///< when normal_cones is on (rebuilt with the topology)
-    std::vector<Index> skip_root;             ///< this step's culling, read by the self pass
-    std::uint64_t cones_version = ~0ull;
-  };
-  /// Rebuilds the degraded sub-trees of every body; returns how many were rebuilt.
-  std::uint64_t restructure(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
-  void build_hierarchies(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
-  /// Every leaf's swept k-DOP (from its vertices' 26-DOPs), then every inner node's, bottom-up (refit plan).
-  void refit_body(BodyState& body, PhaseTrace& trace);
-  /// Every wide record's bounds, from the binary volumes; cuts the layout again (and copies the records' lanes)
-  /// when the topology changed.
-  void refit_wide(BodyState& body, PhaseTrace& trace);
-  /// BVTT traversal of every pass and the narrow phase of its candidates: at once, or slice by slice when the
-  /// memory plan streams.
-  void traverse_and_test(const MemoryPlan& plan, StepResult& result);
-  void test_candidates(StepResult& result);
-  void test_orphans(StepResult& result);
-  /// The narrow phase over `n` items in chunks on every thread: `gather(begin, end, batch)` puts a chunk's
-  /// feature pairs into the batch, which is then culled and tested; contacts and counters merged in thread order.
-  struct NarrowLocal;
-  /// One chunk on one thread: `gather(batch, counters)` fills the batch, which is then culled and tested.
-  template <class Gather>
-  void narrow_chunk(NarrowLocal& local, Gather&& gather);
-  void merge_narrow(const std::vector<PerThread<NarrowLocal>>& local, StepResult& result, PhaseTrace& trace);
-  template <class Gather>
-  void narrow_in_parallel(std::size_t n, std::size_t chunk, const char* phase, StepResult& result, Gather&& gather);
-
   const TriMesh& mesh_;
   CollisionRules rules_;
   PipelineStrategies strategies_;
+  FeatureBounds swept_;  ///< stage 1, read by the hierarchies and the narrow phase
   NarrowPhase narrow_;
-  std::vector<BodyState> bodies_;
-  std::vector<TraversalPass> passes_;
+  std::vector<BodyHierarchy> bodies_;
   std::vector<Index> face_patch_;  ///< normal cones: the skipped patch (BVH node) holding each face this step, or −1
-  TraversalOutput candidates_;
-  MemoryBudget budget_;
+  TraversalDriver traversal_;
+  NarrowDriver narrow_driver_;
   ContactSortScratch sort_scratch_;  ///< sort_contacts' buffers, kept across steps
   bool built_ = false;
-  bool record_tested_ = false;
-  bool keep_candidates_ = false;
 };
 
 /// Bytes a pipeline over `mesh` will add before its first traversal: the BVHs and their volumes (the leaves' are
@@ -136,15 +107,5 @@ class CcdPipeline {
 /// and the two frames of a step. Checked against memory_limit when a pipeline is made, so that a run too large for
 /// the machine is refused before it starts.
 std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std::size_t orphan_pairs);
-
-/// An AnyBvs holding an empty vector of KDop<k>; throws Error unless is_kdop_k(k).
-AnyBvs make_bvs(int k);
-AnyWideBvs make_wide_bvs(int k);
-
-/// Swept k-DOP of every face of the mesh over the step (inflated by thickness / 2), on `threads` threads; the
-/// task costs go to `trace` when given. The pipeline writes these volumes into its BVH leaves instead; this
-/// face-indexed array is for references (brute force) and benchmarks.
-void compute_face_bvs(const TriMesh& mesh, const Positions& x_t0, const Positions& x_t1, double thickness, AnyBvs& out,
-                      int threads = 1, PhaseTrace* trace = nullptr);
 
 }  // namespace ccdlab

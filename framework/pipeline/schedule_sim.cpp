@@ -1,44 +1,125 @@
 #include "framework/pipeline/schedule_sim.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <functional>
 #include <numeric>
 #include <queue>
 
-namespace ccdlab {
+#include "framework/util/uninitialized_vector.hpp"
 
-double simulate_phase(const PhaseTrace& trace, int cores) {
-  const auto& tasks = trace.task_ms;
+namespace ccdlab {
+namespace {
+
+/// The makespan of one region's tasks on `cores` cores.
+double region_makespan(const double* tasks, std::size_t n, Distribution dist, int cores, double scale) {
+  if (n == 0) return 0;
   double makespan = 0;
-  if (!tasks.empty()) {
-    if (trace.distribution == Distribution::static_balanced) {
-      const std::vector<int> thread_of = assign_largest_first(tasks, cores);
-      std::vector<double> load(std::size_t(cores), 0.0);
-      for (std::size_t i = 0; i < tasks.size(); ++i) load[std::size_t(thread_of[i])] += tasks[i];
-      makespan = *std::max_element(load.begin(), load.end());
-    } else if (trace.distribution == Distribution::static_chunks) {
-      const std::size_t n = tasks.size();
-      for (int c = 0; c < cores; ++c) {
-        const std::size_t b = n * std::size_t(c) / std::size_t(cores), e = n * std::size_t(c + 1) / std::size_t(cores);
-        makespan = std::max(makespan, std::accumulate(tasks.begin() + std::ptrdiff_t(b), tasks.begin() + std::ptrdiff_t(e), 0.0));
-      }
-    } else {
-      std::priority_queue<double, std::vector<double>, std::greater<>> free_at;
-      for (int c = 0; c < cores; ++c) free_at.push(0.0);
-      for (double t : tasks) {
-        const double start = free_at.top();
-        free_at.pop();
-        free_at.push(start + t);
-        makespan = std::max(makespan, start + t);
-      }
+  if (dist == Distribution::static_balanced) {
+    const std::vector<int> thread_of = assign_largest_first(std::vector<double>(tasks, tasks + n), cores);
+    std::vector<double> load(std::size_t(cores), 0.0);
+    for (std::size_t i = 0; i < n; ++i) load[std::size_t(thread_of[i])] += tasks[i];
+    makespan = *std::max_element(load.begin(), load.end());
+  } else if (dist == Distribution::static_chunks) {
+    for (int c = 0; c < cores; ++c) {
+      const std::size_t b = n * std::size_t(c) / std::size_t(cores), e = n * std::size_t(c + 1) / std::size_t(cores);
+      makespan = std::max(makespan, std::accumulate(tasks + b, tasks + e, 0.0));
+    }
+  } else {
+    std::priority_queue<double, std::vector<double>, std::greater<>> free_at;
+    for (int c = 0; c < cores; ++c) free_at.push(0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double start = free_at.top();
+      free_at.pop();
+      free_at.push(start + tasks[i]);
+      makespan = std::max(makespan, start + tasks[i]);
     }
   }
-  return trace.serial_ms + makespan;
+  return makespan * scale;
 }
 
-double simulate_step(const std::vector<PhaseTrace>& traces, int cores) {
+template <class Fn>
+double timed_ms(Fn&& fn) {
+  const auto t = std::chrono::steady_clock::now();
+  fn();
+  return ms_between(t, std::chrono::steady_clock::now());
+}
+
+}  // namespace
+
+double MachineModel::fork_join(int n) const {
+  if (fork_join_ms.empty()) return 0;
+  return fork_join_ms[std::size_t(std::clamp(n, 1, int(fork_join_ms.size())) - 1)];
+}
+
+double MachineModel::slowdown(int n) const {
+  if (stream_slowdown.empty()) return 1;
+  return stream_slowdown[std::size_t(std::clamp(n, 1, int(stream_slowdown.size())) - 1)];
+}
+
+MachineModel probe_machine(int max_threads) {
+  MachineModel m;
+  // Fork/join: the median of many regions of n trivial tasks on n threads.
+  for (int n = 1; n <= max_threads; ++n) {
+    std::vector<double> ms(15);
+    for (double& x : ms)
+      x = timed_ms([&] {
+            for (int r = 0; r < 100; ++r) {
+              PhaseTrace t;
+              parallel_tasks(std::size_t(n), n, Distribution::dynamic, t, [](std::size_t, int) {});
+            }
+          }) / 100;
+    std::nth_element(ms.begin(), ms.begin() + 7, ms.end());
+    m.fork_join_ms.push_back(ms[7]);
+  }
+  // Bandwidth: each of n threads sums its own 32 MiB (far beyond the caches), all at once; the slowest thread's
+  // time (median of 5) against one thread's.
+  constexpr std::size_t kWords = std::size_t(32) << 17;  // 32 MiB of doubles
+  const std::size_t lanes = std::size_t(max_threads);
+  std::vector<UninitializedVector<double>> data(lanes);
+  std::vector<PerThread<double>> sink(lanes);
+  PhaseTrace warm;
+  parallel_tasks(std::size_t(max_threads), max_threads, Distribution::static_chunks, warm, [&](std::size_t i, int) {
+    data[i].resize(kWords);
+    for (std::size_t w = 0; w < kWords; ++w) data[i][w] = double(w & 7);
+  });
+  double one = 0;
+  for (int n = 1; n <= max_threads; ++n) {
+    std::vector<double> slowest(5);
+    for (double& s : slowest) {
+      PhaseTrace t;
+      parallel_tasks(std::size_t(n), n, Distribution::static_chunks, t, [&](std::size_t i, int tid) {
+        double sum = 0;
+        for (std::size_t w = 0; w < kWords; ++w) sum += data[i][w];
+        sink[std::size_t(tid)].value += sum;
+      });
+      s = *std::max_element(t.task_ms.begin(), t.task_ms.end());
+    }
+    std::nth_element(slowest.begin(), slowest.begin() + 2, slowest.end());
+    if (n == 1) one = slowest[2];
+    m.stream_slowdown.push_back(one > 0 ? std::max(1.0, slowest[2] / one) : 1.0);
+  }
+  return m;
+}
+
+double simulate_phase(const PhaseTrace& trace, int cores, const MachineModel* machine) {
+  const auto& tasks = trace.task_ms;
+  const double scale = machine ? machine->slowdown(cores) / machine->slowdown(1) : 1.0;
+  const double fork_join = machine ? std::max(0.0, machine->fork_join(cores) - machine->fork_join(1)) : 0.0;
+  // Traces written by hand (tests) or before regions were recorded: one region.
+  std::vector<std::size_t> begins = trace.region_begin;
+  if (begins.empty() && !tasks.empty()) begins.push_back(0);
+  double ms = trace.serial_ms;
+  for (std::size_t r = 0; r < begins.size(); ++r) {
+    const std::size_t b = begins[r], e = r + 1 < begins.size() ? begins[r + 1] : tasks.size();
+    ms += region_makespan(tasks.data() + b, e - b, trace.distribution, cores, scale) + fork_join;
+  }
+  return ms;
+}
+
+double simulate_step(const std::vector<PhaseTrace>& traces, int cores, const MachineModel* machine) {
   double ms = 0;
-  for (const PhaseTrace& t : traces) ms += simulate_phase(t, cores);
+  for (const PhaseTrace& t : traces) ms += simulate_phase(t, cores, machine);
   return ms;
 }
 
@@ -46,6 +127,16 @@ double imbalance(const PhaseTrace& trace) {
   if (trace.thread_ms.empty()) return 0;
   const double mean = std::accumulate(trace.thread_ms.begin(), trace.thread_ms.end(), 0.0) / double(trace.thread_ms.size());
   return mean > 0 ? *std::max_element(trace.thread_ms.begin(), trace.thread_ms.end()) / mean : 0;
+}
+
+PhaseTrace untraced_time(const std::vector<PhaseTrace>& traces, double step_ms) {
+  double accounted = 0;
+  for (const PhaseTrace& t : traces) {
+    accounted += t.serial_ms;
+    if (!t.thread_ms.empty()) accounted += *std::max_element(t.thread_ms.begin(), t.thread_ms.end());
+    else accounted += std::accumulate(t.task_ms.begin(), t.task_ms.end(), 0.0);
+  }
+  return PhaseTrace{"untraced", Distribution::dynamic, std::max(0.0, step_ms - accounted), {}, {}};
 }
 
 }  // namespace ccdlab

@@ -4,6 +4,7 @@
 //   self node (A, A)  → children (L, L), (R, R), (L, R)        — the "ternary" BVTT of the paper
 //   pair node (A, B)  → one BV overlap test; if they overlap, descend the larger node (by size_measure;
 //                       the other one if the larger is a leaf); two overlapping leaves give a candidate.
+// (The rule's one home is BvttView: self_opens, self_children, pair_children.)
 // Adjacent faces (sharing a vertex) are never candidates: ICCD handles their features in the orphan set.
 #include <algorithm>
 #include <bit>
@@ -29,7 +30,6 @@ void traverse_bvtt_binary(const BvttView<BV>& v, BvttNode start, std::vector<Bvt
   const BvhNode* const nb = v.bvh_b->nodes.data();
   const BV* const bva = v.bv_a->data();
   const BV* const bvb = v.bv_b->data();
-  const Index* const skip_root = v.skip_root;
   const bool self = v.self;
   std::uint64_t bv_tests = 0;
   // The stack grows by at most 2 per visit; room for 2 more is checked before each visit. It starts small, so
@@ -56,10 +56,11 @@ void traverse_bvtt_binary(const BvttView<BV>& v, BvttNode start, std::vector<Bvt
     }
     const BvhNode& A = na[n.a];
     if (self && n.a == n.b) {
-      if (!A.is_leaf() && !(skip_root && skip_root[n.a] >= 0)) {
-        *top++ = {A.left, A.right};
-        *top++ = {A.right, A.right};
-        n = {A.left, A.left};
+      if (v.self_opens(A, n.a)) {
+        const auto c = v.self_children(A);
+        *top++ = c.node[2];
+        *top++ = c.node[1];
+        n = c.node[0];
         continue;
       }
     } else {
@@ -74,13 +75,10 @@ void traverse_bvtt_binary(const BvttView<BV>& v, BvttNode start, std::vector<Bvt
             pend = pairs.data() + pairs.size();
           }
           pout = v.write_face_pair(pout, A.face, B.face);
-        } else if (v.descend_a(A, B, bva[n.a], bvb[n.b])) {
-          *top++ = {A.right, n.b};
-          n.a = A.left;
-          continue;
         } else {
-          *top++ = {n.a, B.right};
-          n.b = B.left;
+          const auto c = v.pair_children(n, A, B, bva[n.a], bvb[n.b]);
+          *top++ = c.node[1];
+          n = c.node[0];
           continue;
         }
       }

@@ -132,13 +132,9 @@ void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNod
       }
       first = false;
       if (!stop) {
-        if (v.descend_a(X, Y, bva[n.a], bvb[n.b])) {
-          stack.push_back({X.right, n.b});
-          n.a = X.left;
-        } else {
-          stack.push_back({n.a, Y.right});
-          n.b = Y.left;
-        }
+        const auto children = v.pair_children(n, X, Y, bva[n.a], bvb[n.b]);
+        stack.push_back(children.node[1]);
+        n = children.node[0];
         continue;
       }
       if (stack.empty()) break;

@@ -25,12 +25,12 @@ std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t wa
     bool opened = false;
     for (BvttNode n : level) {
       const BvhNode& A = na[n.a];
-      if (v.self && n.a == n.b) {
-        if (A.is_leaf() || (v.skip_root && v.skip_root[n.a] >= 0)) continue;
-        next.push_back({A.left, A.left});
-        next.push_back({A.right, A.right});
-        next.push_back({A.left, A.right});
+      const auto open = [&](const typename BvttView<BV>::Children& c) {
+        next.insert(next.end(), c.node, c.node + c.count);
         opened = true;
+      };
+      if (v.self && n.a == n.b) {
+        if (v.self_opens(A, n.a)) open(v.self_children(A));
         continue;
       }
       ++out.bv_tests;
@@ -40,14 +40,7 @@ std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t wa
         v.emit_leaf_pair(A, B, out.pairs.part(0));
         continue;
       }
-      opened = true;
-      if (v.descend_a(n.a, n.b)) {
-        next.push_back({A.left, n.b});
-        next.push_back({A.right, n.b});
-      } else {
-        next.push_back({n.a, B.left});
-        next.push_back({n.a, B.right});
-      }
+      open(v.pair_children(n));
     }
     std::swap(level, next);
     if (!opened) break;

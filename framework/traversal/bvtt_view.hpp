@@ -55,11 +55,28 @@ struct BvttView {
     *at = fa < fb ? FacePair{fa, fb} : FacePair{fb, fa};
     return at + int(!mesh->faces_adjacent(fa, fb));
   }
-  /// The descent rule of a pair node: split a (true) or b (false) — the larger by size_measure, never a leaf.
-  [[nodiscard]] bool descend_a(Index a, Index b) const {
-    return descend_a(bvh_a->nodes[a], bvh_b->nodes[b], (*bv_a)[a], (*bv_b)[b]);
+  /// The BVTT expansion rule, its one home: every walk, task split and front opens a node through
+  /// self_opens / self_children / pair_children (the wide walks apply the same rule to a record's lanes,
+  /// bvtt_wide.hpp):
+  ///   self node (A, A), A inner and its self test not skipped    → (L, L), (R, R), (L, R)
+  ///   pair node (A, B) whose volumes overlap, not two leaves      → the two children of the side descend_a picks
+  /// Children come in visiting order: a depth-first walk visits node[0] next and stacks the others in reverse.
+  struct Children {
+    BvttNode node[3];
+    int count;
+  };
+  [[nodiscard]] bool self_opens(const BvhNode& A, Index a) const { return !A.is_leaf() && !(skip_root && skip_root[a] >= 0); }
+  [[nodiscard]] static Children self_children(const BvhNode& A) {
+    return {{{A.left, A.left}, {A.right, A.right}, {A.left, A.right}}, 3};
   }
-  /// The same rule on the nodes and volumes themselves (the walks that hold raw pointers).
+  [[nodiscard]] static Children pair_children(BvttNode n, const BvhNode& A, const BvhNode& B, const BV& va, const BV& vb) {
+    if (descend_a(A, B, va, vb)) return {{{A.left, n.b}, {A.right, n.b}, {}}, 2};
+    return {{{n.a, B.left}, {n.a, B.right}, {}}, 2};
+  }
+  [[nodiscard]] Children pair_children(BvttNode n) const {
+    return pair_children(n, bvh_a->nodes[n.a], bvh_b->nodes[n.b], (*bv_a)[n.a], (*bv_b)[n.b]);
+  }
+  /// The descent rule of a pair node: split a (true) or b (false) — the larger by size_measure, never a leaf.
   [[nodiscard]] static bool descend_a(const BvhNode& A, const BvhNode& B, const BV& va, const BV& vb) {
     return B.is_leaf() || (!A.is_leaf() && va.size_measure() >= vb.size_measure());
   }

@@ -105,8 +105,8 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
       }
       if (self && n.ha == n.hb) {
         const BvhNode& A = na[n.ha];
-        if (!A.is_leaf() && !(skip_root && skip_root[n.ha] >= 0)) {
-          ++bv_tests;
+        if (!A.is_leaf() && !(skip_root && skip_root[n.ha] >= 0)) {  // BvttView::self_opens / self_children,
+          ++bv_tests;                                                   // (L, R) tested before it is stacked
           if (bva[A.left].overlaps(bva[A.right])) *top++ = pair_entry(A.left, A.right);
           *top++ = {A.right, A.right, -1, -1, 0, 0};
           n = {A.left, A.left, -1, -1, 0, 0};

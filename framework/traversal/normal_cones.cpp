@@ -256,15 +256,13 @@ std::uint64_t NormalConeCuller::update(const Positions& x0, const Positions& x1,
   };
   // 1. Cones bottom-up inside each sub-tree of the cut (parallel), then above it (serial).
   const RefitPlan& plan = bvh_.refit_plan();
-  PhaseTrace part;
-  parallel_chunks(plan.subtrees.size(), 1, threads, part, [&](std::size_t k, std::size_t, int) {
+  parallel_chunks(plan.subtrees.size(), 1, threads, trace, [&](std::size_t k, std::size_t, int) {
     const Index r = plan.subtrees[k];
     for (Index i = bvh_.subtree_end(r) - 1; i >= r; --i) {
       if (bvh_.nodes[i].is_leaf()) cone_[i] = face_cone(i);
       else merge_children(i);
     }
   });
-  trace.task_ms = part.task_ms;
   auto t0 = Clock::now();
   for (Index i : plan.top) merge_children(i);
   // 2. Skips top-down: above the cut (serial), then inside each sub-tree (parallel).
@@ -278,12 +276,11 @@ std::uint64_t NormalConeCuller::update(const Positions& x0, const Positions& x1,
   for (auto it = plan.top.rbegin(); it != plan.top.rend(); ++it) decide(*it, edges, skipped);
   trace.serial_ms += ms_between(t0, Clock::now());
   std::vector<PerThread<std::array<std::uint64_t, 2>>> counts(threads);
-  parallel_chunks(plan.subtrees.size(), 1, threads, part, [&](std::size_t k, std::size_t, int tid) {
+  parallel_chunks(plan.subtrees.size(), 1, threads, trace, [&](std::size_t k, std::size_t, int tid) {
     const Index r = plan.subtrees[k];
     auto& c = counts[tid].value;
     for (Index i = r; i < bvh_.subtree_end(r); ++i) decide(i, c[0], c[1]);
   });
-  trace.task_ms.insert(trace.task_ms.end(), part.task_ms.begin(), part.task_ms.end());
   for (const auto& c : counts) edges += c.value[0], skipped += c.value[1];
   contour_edge_tests_ = edges;
   return skipped;

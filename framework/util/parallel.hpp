@@ -43,9 +43,12 @@ inline std::vector<int> assign_largest_first(const std::vector<double>& cost, in
 struct PhaseTrace {
   std::string phase;
   Distribution distribution = Distribution::dynamic;
-  double serial_ms = 0;          ///< time spent outside the parallel loop (splitting, merging)
-  std::vector<double> task_ms;   ///< cost of each task, in the order tasks were handed out
-  std::vector<double> thread_ms; ///< busy time of each thread
+  double serial_ms = 0;          ///< time spent outside the parallel loops (splitting, merging)
+  std::vector<double> task_ms;   ///< cost of each task, in the order tasks were handed out, region after region
+  std::vector<double> thread_ms; ///< busy time of each thread, over all regions
+  /// Where each parallel region's tasks start in task_ms: the regions of a phase run one after the other, each
+  /// ending at a barrier (and each paying the machine's fork/join cost: schedule_sim.hpp).
+  std::vector<std::size_t> region_begin = {};
 };
 
 /// Per-thread state padded to its own cache lines: neighbours' counters and vector headers written on every
@@ -92,21 +95,24 @@ class TaskErrors {
 /// Runs task(i, thread) for i in [0, n) on `threads` threads: handed out one at a time to whichever thread is
 /// free (Distribution::dynamic), as `threads` equal-count contiguous ranges fixed before the start
 /// (Distribution::static_chunks), or task i on thread `thread_of[i]`, each thread in index order
-/// (Distribution::static_balanced). Records each task's cost and each thread's busy time in `trace`. The one
-/// place ccdlab opens an OpenMP region: exceptions come back to the caller (TaskErrors).
+/// (Distribution::static_balanced). Appends a region to `trace`: each task's cost, each thread's busy time. The
+/// one place ccdlab opens an OpenMP region: exceptions come back to the caller (TaskErrors).
 template <class Task>
 void parallel_tasks(std::size_t n, int threads, Distribution dist, PhaseTrace& trace, Task&& task,
                     const std::vector<int>* thread_of = nullptr) {
   using Clock = std::chrono::steady_clock;
   trace.distribution = dist;
-  trace.task_ms.assign(n, 0.0);
-  trace.thread_ms.assign(std::size_t(threads), 0.0);
+  const std::size_t first = trace.task_ms.size();
+  trace.region_begin.push_back(first);
+  trace.task_ms.resize(first + n, 0.0);
+  double* const task_ms = trace.task_ms.data() + first;
+  if (trace.thread_ms.size() < std::size_t(threads)) trace.thread_ms.resize(std::size_t(threads), 0.0);
   TaskErrors errors;
   auto timed = [&](std::size_t i, int tid) {
     const auto t0 = Clock::now();
     errors.run([&] { task(i, tid); });
     const double ms = ms_between(t0, Clock::now());
-    trace.task_ms[i] = ms;
+    task_ms[i] = ms;
     trace.thread_ms[std::size_t(tid)] += ms;
   };
   if (dist == Distribution::dynamic) {

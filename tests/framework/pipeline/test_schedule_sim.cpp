@@ -39,5 +39,42 @@ TEST(ScheduleSim, StepSumsPhasesAndSerialPartsStaySerial) {
   EXPECT_DOUBLE_EQ(imbalance({"x", Distribution::dynamic, 0, {}, {3.0, 1.0}}), 1.5);
 }
 
+TEST(ScheduleSim, RegionsOfAPhaseEndAtABarrier) {
+  PhaseTrace t{"p", Distribution::dynamic, 0, {2, 2}, {}};
+  EXPECT_DOUBLE_EQ(simulate_phase(t, 2), 2.0);  // one region: side by side
+  t.region_begin = {0, 1};
+  EXPECT_DOUBLE_EQ(simulate_phase(t, 2), 4.0);  // two regions: one after the other
+  EXPECT_DOUBLE_EQ(simulate_phase(t, 1), 4.0);
+}
+
+TEST(ScheduleSim, TheMachineAddsForkJoinPerRegionAndSlowsTasksByItsBandwidth) {
+  const MachineModel m{{0.1, 0.3}, {1.0, 1.5}};
+  PhaseTrace t{"p", Distribution::dynamic, 1.0, {2, 2}, {}, {0, 1}};
+  EXPECT_DOUBLE_EQ(simulate_phase(t, 1, &m), 5.0);                    // what one thread recorded
+  EXPECT_DOUBLE_EQ(simulate_phase(t, 2, &m), 1.0 + 2 * (2 * 1.5) + 2 * 0.2);
+  EXPECT_DOUBLE_EQ(simulate_phase(t, 8, &m), simulate_phase(t, 2, &m));  // beyond the probe: its last values
+  EXPECT_DOUBLE_EQ(MachineModel{}.slowdown(4), 1.0);
+  EXPECT_DOUBLE_EQ(MachineModel{}.fork_join(4), 0.0);
+}
+
+TEST(ScheduleSim, TimeOutsideEveryPhaseIsSerial) {
+  const std::vector<PhaseTrace> traces{{"a", Distribution::dynamic, 1.0, {2, 3}, {5.0}},
+                                       {"b", Distribution::dynamic, 0.5, {4, 4}, {}}};
+  const PhaseTrace rest = untraced_time(traces, 20.0);
+  EXPECT_EQ(rest.phase, "untraced");
+  EXPECT_DOUBLE_EQ(rest.serial_ms, 20.0 - (1.0 + 5.0) - (0.5 + 8.0));
+  EXPECT_TRUE(rest.task_ms.empty());
+  EXPECT_DOUBLE_EQ(untraced_time(traces, 1.0).serial_ms, 0.0);  // never negative
+}
+
+TEST(ScheduleSim, TheProbeMeasuresEveryThreadCount) {
+  const MachineModel m = probe_machine(2);
+  ASSERT_EQ(m.fork_join_ms.size(), 2u);
+  ASSERT_EQ(m.stream_slowdown.size(), 2u);
+  EXPECT_DOUBLE_EQ(m.stream_slowdown[0], 1.0);
+  for (double s : m.stream_slowdown) EXPECT_GE(s, 1.0);
+  for (double f : m.fork_join_ms) EXPECT_GT(f, 0.0);
+}
+
 }  // namespace
 }  // namespace ccdlab

@@ -43,6 +43,15 @@ TEST(Executor, StaticBalancedRunsEachTaskOnItsAssignedThread) {
   }
 }
 
+TEST(Executor, RegionsAppendToTheirPhasesTrace) {
+  PhaseTrace trace;
+  parallel_tasks(5, 2, Distribution::dynamic, trace, [](std::size_t, int) {});
+  parallel_chunks(10, 4, 3, trace, [](std::size_t, std::size_t, int) {});
+  EXPECT_EQ(trace.task_ms.size(), 5u + 3u);
+  EXPECT_EQ(trace.region_begin, (std::vector<std::size_t>{0, 5}));
+  EXPECT_EQ(trace.thread_ms.size(), 3u);  // the most threads any region had
+}
+
 TEST(Executor, ChunksCoverTheRangeExactly) {
   std::vector<std::atomic<int>> hits(1001);
   PhaseTrace trace;

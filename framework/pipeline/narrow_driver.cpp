@@ -1,0 +1,134 @@
+#include "framework/pipeline/narrow_driver.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "framework/pipeline/phase_clock.hpp"
+
+namespace ccdlab {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return ms_between(t, Clock::now()); }
+
+// Chunk sizes: large enough to amortise a hand-out, a clock read and a batch's padding, small enough to balance
+// (docs/pipeline.md). An orphan costs a few ns at stage 1, a candidate ~50 feature pairs: hence the ratio.
+constexpr std::size_t kCandidateChunk = 512;
+constexpr std::size_t kOrphanChunk = 8192;
+
+}  // namespace
+
+template <class Gather>
+void NarrowDriver::run_chunk(ThreadState& s, Gather&& gather) const {
+  FeatureBatch& batch = s.scratch.batch;
+  batch.clear();
+  const auto t = Clock::now();
+  const std::uint64_t kdop_before = s.counters.kdop_ns;
+  gather(batch, s.counters);
+  // What a gather spent on stage 1 (gather_orphans) counts as stage 1, not twice.
+  s.counters.gather_ns += std::uint64_t(ms_since(t) * 1e6) - (s.counters.kdop_ns - kdop_before);
+  if (record_tested_) {
+    s.tested_vf.insert(s.tested_vf.end(), batch.vf.begin(), batch.vf.end());
+    s.tested_ee.insert(s.tested_ee.end(), batch.ee.begin(), batch.ee.end());
+  }
+  narrow_.run(s.scratch, s.contacts, s.counters);
+}
+
+double NarrowDriver::merge(const std::vector<PerThread<ThreadState>>& local, StepResult& result) const {
+  const auto t0 = Clock::now();
+  std::size_t found = 0;
+  for (const auto& per_thread : local) found += per_thread.value.contacts.size();
+  result.contacts.reserve(result.contacts.size() + found);
+  for (const auto& per_thread : local) {
+    const ThreadState& s = per_thread.value;
+    result.contacts.insert(result.contacts.end(), s.contacts.begin(), s.contacts.end());
+    result.counters += s.counters;
+    result.tested_vf.insert(result.tested_vf.end(), s.tested_vf.begin(), s.tested_vf.end());
+    result.tested_ee.insert(result.tested_ee.end(), s.tested_ee.begin(), s.tested_ee.end());
+  }
+  return ms_since(t0);
+}
+
+template <class Gather>
+void NarrowDriver::in_parallel(std::size_t n, std::size_t chunk, const char* phase, double* timing, StepResult& result,
+                               Gather&& gather) const {
+  PhaseClock(result).parallel(phase, timing, [&](PhaseTrace& trace) {
+    std::vector<PerThread<ThreadState>> local(threads_);
+    parallel_chunks(n, chunk, threads_, trace, [&](std::size_t b, std::size_t e, int tid) {
+      run_chunk(local[tid].value, [&](FeatureBatch& batch, NarrowCounters& c) { gather(b, e, batch, c); });
+    });
+    trace.serial_ms += merge(local, result);
+  });
+}
+
+NarrowDriver::InTraversal::InTraversal(const NarrowDriver& driver)
+    : driver_(driver), local_(driver.threads_), taken_(driver.threads_) {}
+
+void NarrowDriver::InTraversal::take(int tid, std::span<const FacePair> pairs) {
+  const auto t = Clock::now();
+  for (std::size_t b = 0; b < pairs.size(); b += kCandidateChunk) {
+    const auto piece = pairs.subspan(b, std::min(kCandidateChunk, pairs.size() - b));
+    driver_.run_chunk(local_[tid].value, [&](FeatureBatch& batch, NarrowCounters&) { driver_.narrow_.gather(piece, batch); });
+  }
+  taken_[tid].value.pairs += pairs.size();
+  taken_[tid].value.ms += ms_since(t);
+}
+
+double NarrowDriver::InTraversal::finish(StepResult& result) {
+  double ms = 0;  // the threads' mean: they ran at once
+  for (const auto& tk : taken_) {
+    result.counters.candidate_pairs += tk.value.pairs;
+    ms += tk.value.ms / double(taken_.size());
+  }
+  result.timings.narrow_ms += ms;
+  // A serial phase of its own: its tasks are the traversal's.
+  PhaseClock(result).serial("narrow_in_traversal", &result.timings.narrow_ms, [&] { driver_.merge(local_, result); });
+  return ms;
+}
+
+void NarrowDriver::test_candidates(const CandidateList& pairs, StepResult& result) const {
+  result.counters.candidate_pairs += pairs.size();
+  in_parallel(pairs.size(), kCandidateChunk, "narrow", &result.timings.narrow_ms, result,
+              [&](std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters&) {
+                pairs.for_each_span(b, e, [&](std::span<const FacePair> s) { narrow_.gather(s, batch); });
+              });
+}
+
+void NarrowDriver::test_orphans(const std::vector<Index>* face_patch, StepResult& result) const {
+  StepCounters& c = result.counters;
+  const std::uint64_t vf_before = c.vf_pairs, ee_before = c.ee_pairs, tests_before = c.vf_tests + c.ee_tests;
+  const Representatives& reps = narrow_.representatives();
+  const OrphanSet& orphans = reps.orphans();
+  auto same_skipped_patch = [face_patch](Index f, Index g) {
+    return (*face_patch)[f] >= 0 && (*face_patch)[f] == (*face_patch)[g];
+  };
+  const std::size_t nvf = orphans.vf.size(), n = nvf + orphans.ee.size();
+  in_parallel(n, kOrphanChunk, "orphans", &result.timings.orphan_ms, result, [&](std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters& lc) {
+    if (!face_patch) {  // the chunk as it is
+      const std::span<const VertexFacePair> vf(orphans.vf.data() + std::min(b, nvf), orphans.vf.data() + std::min(e, nvf));
+      const std::span<const EdgeEdgePair> ee(orphans.ee.data() + (std::max(b, nvf) - nvf), orphans.ee.data() + (std::max(e, nvf) - nvf));
+      if (record_tested_) {  // every orphan is recorded as gathered: copy them whole
+        batch.vf.insert(batch.vf.end(), vf.begin(), vf.end());
+        batch.ee.insert(batch.ee.end(), ee.begin(), ee.end());
+      } else {
+        narrow_.gather_orphans(vf, ee, batch, lc);
+      }
+      return;
+    }
+    for (std::size_t i = b; i < std::min(e, nvf); ++i) {
+      const VertexFacePair& p = orphans.vf[i];
+      if (same_skipped_patch(reps.face_of_vertex(p.v), p.f)) ++lc.orphans_culled;
+      else batch.vf.push_back(p);
+    }
+    for (std::size_t i = std::max(b, nvf); i < e; ++i) {
+      const EdgeEdgePair& p = orphans.ee[i - nvf];
+      if (same_skipped_patch(reps.face_of_edge(p.a), reps.face_of_edge(p.b))) ++lc.orphans_culled;
+      else batch.ee.push_back(p);
+    }
+  });
+  c.orphan_vf = c.vf_pairs - vf_before;  // orphan pairs considered (culled ones counted apart)
+  c.orphan_ee = c.ee_pairs - ee_before;
+  c.orphan_tests = c.vf_tests + c.ee_tests - tests_before;
+}
+
+}  // namespace ccdlab

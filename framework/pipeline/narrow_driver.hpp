@@ -1,0 +1,77 @@
+#pragma once
+// Stage 4 of a step (design.md): the narrow phase on every thread. NarrowPhase (framework/narrow/) culls and
+// tests one batch; this driver cuts the work into chunks, keeps each thread's state (contacts, counters,
+// batch memory), and merges the threads' results in thread order (the final sort makes the contact set
+// independent of the schedule). It takes candidates three ways:
+//   InTraversal      on the traversal's own threads, as each thread hands its candidates over
+//   test_candidates  a list of candidates left over (or streamed slice by slice), in parallel chunks
+//   test_orphans     the orphan set (representatives.hpp), in parallel chunks
+#include <span>
+#include <vector>
+
+#include "framework/narrow/narrow_phase.hpp"
+#include "framework/pipeline/step_result.hpp"
+
+namespace ccdlab {
+
+class NarrowDriver {
+ public:
+  NarrowDriver(const NarrowPhase& narrow, int threads) : narrow_(narrow), threads_(threads) {}
+
+  /// Tests of the ownership rule: record every feature pair gathered into StepResult::tested_*.
+  void record_tested(bool on) { record_tested_ = on; }
+
+  /// One thread's state over a parallel loop: what it found and counted, and its batch memory.
+  struct ThreadState {
+    Contacts contacts;
+    NarrowCounters counters;
+    NarrowScratch scratch;
+    std::vector<VertexFacePair> tested_vf;
+    std::vector<EdgeEdgePair> tested_ee;
+  };
+
+  /// The narrow phase inside the traversal: take() runs on the thread that found the pairs; finish() merges
+  /// (adding the narrow phase's time to StepTimings::narrow_ms) and returns the threads' mean time in take()
+  /// (they ran at once): the traversal's time leaves it out.
+  class InTraversal {
+   public:
+    explicit InTraversal(const NarrowDriver& driver);
+    void take(int tid, std::span<const FacePair> pairs);
+    double finish(StepResult& result);
+
+   private:
+    struct Taken {
+      std::uint64_t pairs = 0;
+      double ms = 0;
+    };
+    const NarrowDriver& driver_;
+    std::vector<PerThread<ThreadState>> local_;
+    std::vector<PerThread<Taken>> taken_;
+  };
+
+  /// Every candidate of `pairs` (phase "narrow", into StepTimings::narrow_ms); counts them as candidate pairs.
+  void test_candidates(const CandidateList& pairs, StepResult& result) const;
+  /// The orphan set (phase "orphans", into StepTimings::orphan_ms). With `face_patch` (normal cones: each face's skipped patch this step, or
+  /// −1), a pair of two faces in one skipped patch is culled: the same height-field argument as for the
+  /// candidates the traversal skipped.
+  void test_orphans(const std::vector<Index>* face_patch, StepResult& result) const;
+
+ private:
+  /// One chunk on one thread: `gather(batch, counters)` fills the batch, which is then culled and tested.
+  template <class Gather>
+  void run_chunk(ThreadState& state, Gather&& gather) const;
+  /// `n` items in chunks on every thread, as the phase `phase` (its ms added to `*timing`):
+  /// `gather(begin, end, batch, counters)` puts a chunk's feature pairs into the batch; the threads' results are
+  /// merged into `result`.
+  template <class Gather>
+  void in_parallel(std::size_t n, std::size_t chunk, const char* phase, double* timing, StepResult& result,
+                   Gather&& gather) const;
+  /// Appends the threads' contacts, counters and recorded pairs to `result`, in thread order; returns its ms.
+  double merge(const std::vector<PerThread<ThreadState>>& local, StepResult& result) const;
+
+  const NarrowPhase& narrow_;
+  int threads_;
+  bool record_tested_ = false;
+};
+
+}  // namespace ccdlab
