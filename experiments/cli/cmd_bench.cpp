@@ -134,8 +134,8 @@ int bench_command(const BenchOptions& o) {
   }
   std::vector<Measured> measured(configs.size());
 
-  // The machine's fork/join cost and bandwidth contention, for the simulator (schedule_sim.hpp): measured on as
-  // many threads as both the machine and the simulated cores have.
+  // The machine's fork/join cost, for the simulator (schedule_sim.hpp): measured on as many threads as both the
+  // machine and the simulated cores have.
   const int probe_threads = std::max(1, std::min(int(std::thread::hardware_concurrency()), *std::max_element(cores.begin(), cores.end())));
   const MachineModel machine = probe_machine(probe_threads);
   // Round −1 warms caches, page tables and the OpenMP thread pools; it is not timed into any result.
@@ -221,7 +221,7 @@ int bench_command(const BenchOptions& o) {
   jsonl << nlohmann::json{{"type", "config"}, {"config", config_json}, {"git_revision", rev}, {"scene", scene.description()},
                           {"triangles", scene.topology().num_faces()}, {"steps", steps}, {"untimed_steps", o.untimed_steps}, {"rounds", o.rounds},
                           {"cpu", cpu_model()}, {"hardware_threads", std::thread::hardware_concurrency()},
-                          {"machine", {{"fork_join_ms", machine.fork_join_ms}, {"stream_slowdown", machine.stream_slowdown}}},
+                          {"fork_join_ms", machine.fork_join_ms},
                           {"compiler", build_info::compiler}}
                .dump()
         << "\n";
@@ -266,17 +266,34 @@ int bench_command(const BenchOptions& o) {
                  m.traverse_ms / steps, m.serial_ms / steps, imb, m.front_max, m.front_bytes_max / 1e6);
   }
 
+  // The machine model of each scheduler's 1-thread run: the probe's fork/join cost, and each phase's task
+  // inflation measured between that run (split as the most threads measured would split it) and the run on
+  // that many threads. None where no multi-thread run was measured.
+  const int most_threads = *std::max_element(threads.begin(), threads.end());
+  std::vector<MachineModel> machine_of(measured_configs, machine);
+  for (std::size_t i = 0; i < measured_configs; ++i) {
+    if (configs[i].threads != 1 || most_threads < 2) continue;
+    std::size_t alone = i, parallel = i;
+    for (std::size_t j = 0; j < configs.size(); ++j) {
+      if (configs[j].label() != configs[i].label()) continue;
+      if (j >= measured_configs && configs[j].split == most_threads) alone = j;
+      if (j < measured_configs && configs[j].threads == most_threads) parallel = j;
+    }
+    if (parallel != i)
+      machine_of[i].task_inflation = measure_task_inflation(measured[alone].median_traces(), measured[parallel].median_traces());
+  }
+
   // Simulated scaling from the 1-thread task costs; validated where a measured run exists.
   nlohmann::json sim_rows = nlohmann::json::array();
-  if (!o.json) {
-    fmt::print("\nsimulated ms/step (speed-up vs {} x1) from 1-thread task costs, on this machine's fork/join and\n"
-               "bandwidth ({} measured: fork/join {} us, streaming slowdown {}); [measured, error (on the ideal machine)]:\n",
-               configs[ref].label(), probe_threads == 1 ? "1 thread" : fmt::format("1-{} threads", probe_threads),
+  if (!o.json)
+    fmt::print("\nsimulated ms/step (speed-up vs {} x1) from 1-thread task costs, with this machine's fork/join ({} us on\n"
+               "1..{} threads) and each phase's task inflation at {} threads; [measured, error (ideal machine's error)]:\n",
+               configs[ref].label(),
                fmt::join(machine.fork_join_ms | std::views::transform([](double ms) { return fmt::format("{:.1f}", 1e3 * ms); }), "/"),
-               fmt::join(machine.stream_slowdown | std::views::transform([](double s) { return fmt::format("{:.2f}", s); }), "/"));
-  }
+               probe_threads, most_threads);
   for (std::size_t i = 0; i < measured_configs; ++i) {
     if (configs[i].threads != 1) continue;
+    const MachineModel& machine = machine_of[i];
     std::string line = fmt::format("{:>10}", configs[i].label());
     for (int n : cores) {
       std::size_t recorded = i;  // the run split for n threads, where the scheduler's split depends on it
@@ -311,7 +328,7 @@ int bench_command(const BenchOptions& o) {
   for (int n : cores)
     if (n <= 8) probe = std::max(probe, n);
   if (!o.json)
-    fmt::print("\nper phase, ms/step at 1 core -> {} simulated cores (serial part); the serial fraction of a step:\n", probe);
+    fmt::print("\nper phase, ms/step at 1 core -> {} simulated cores (serial part, task inflation); the serial fraction of a step:\n", probe);
   for (std::size_t i = 0; i < measured_configs; ++i) {
     if (configs[i].threads != 1) continue;
     std::map<std::string, std::array<double, 3>> phases;  // 1 core, N cores, serial
@@ -326,12 +343,16 @@ int bench_command(const BenchOptions& o) {
         acc[1] += simulate_phase(t, probe, &machine) / steps;
         acc[2] += t.serial_ms / steps;
       }
-    nlohmann::json row = {{"type", "phases"}, {"scheduler", configs[i].label()}, {"cores", probe}};
+    const MachineModel& machine = machine_of[i];
+    nlohmann::json row = {{"type", "phases"}, {"scheduler", configs[i].label()}, {"cores", probe},
+                          {"task_inflation", machine.task_inflation}};
     std::string line = fmt::format("{:>10}", configs[i].label());
     double one_core = 0, serial = 0;
     for (const auto& [name, acc] : phases) {
       row["phases"][name] = {{"ms_1", acc[0]}, {"ms_n", acc[1]}, {"serial_ms", acc[2]}};
-      line += fmt::format(" | {} {:.1f}->{:.1f} ({:.1f})", name, acc[0], acc[1], acc[2]);
+      const double inflation = machine.inflation(name, probe);
+      line += fmt::format(" | {} {:.1f}->{:.1f} ({:.1f}{})", name, acc[0], acc[1], acc[2],
+                          inflation != 1 ? fmt::format(", tasks x{:.2f}", inflation) : std::string());
       one_core += acc[0], serial += acc[2];
     }
     // The serial fraction of a step (every phase's part outside its parallel loop, and the phases without one):

@@ -1,12 +1,12 @@
 #include "framework/pipeline/schedule_sim.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <functional>
 #include <numeric>
 #include <queue>
 
-#include "framework/util/uninitialized_vector.hpp"
 
 namespace ccdlab {
 namespace {
@@ -52,14 +52,15 @@ double MachineModel::fork_join(int n) const {
   return fork_join_ms[std::size_t(std::clamp(n, 1, int(fork_join_ms.size())) - 1)];
 }
 
-double MachineModel::slowdown(int n) const {
-  if (stream_slowdown.empty()) return 1;
-  return stream_slowdown[std::size_t(std::clamp(n, 1, int(stream_slowdown.size())) - 1)];
+double MachineModel::inflation(const std::string& phase, int n) const {
+  if (n <= 1) return 1;
+  const auto it = task_inflation.find(phase);
+  return it == task_inflation.end() ? 1 : it->second;
 }
 
 MachineModel probe_machine(int max_threads) {
   MachineModel m;
-  // Fork/join: the median of many regions of n trivial tasks on n threads.
+  // The median of many regions of n trivial tasks on n threads.
   for (int n = 1; n <= max_threads; ++n) {
     std::vector<double> ms(15);
     for (double& x : ms)
@@ -72,39 +73,25 @@ MachineModel probe_machine(int max_threads) {
     std::nth_element(ms.begin(), ms.begin() + 7, ms.end());
     m.fork_join_ms.push_back(ms[7]);
   }
-  // Bandwidth: each of n threads sums its own 32 MiB (far beyond the caches), all at once; the slowest thread's
-  // time (median of 5) against one thread's.
-  constexpr std::size_t kWords = std::size_t(32) << 17;  // 32 MiB of doubles
-  const std::size_t lanes = std::size_t(max_threads);
-  std::vector<UninitializedVector<double>> data(lanes);
-  std::vector<PerThread<double>> sink(lanes);
-  PhaseTrace warm;
-  parallel_tasks(std::size_t(max_threads), max_threads, Distribution::static_chunks, warm, [&](std::size_t i, int) {
-    data[i].resize(kWords);
-    for (std::size_t w = 0; w < kWords; ++w) data[i][w] = double(w & 7);
-  });
-  double one = 0;
-  for (int n = 1; n <= max_threads; ++n) {
-    std::vector<double> slowest(5);
-    for (double& s : slowest) {
-      PhaseTrace t;
-      parallel_tasks(std::size_t(n), n, Distribution::static_chunks, t, [&](std::size_t i, int tid) {
-        double sum = 0;
-        for (std::size_t w = 0; w < kWords; ++w) sum += data[i][w];
-        sink[std::size_t(tid)].value += sum;
-      });
-      s = *std::max_element(t.task_ms.begin(), t.task_ms.end());
-    }
-    std::nth_element(slowest.begin(), slowest.begin() + 2, slowest.end());
-    if (n == 1) one = slowest[2];
-    m.stream_slowdown.push_back(one > 0 ? std::max(1.0, slowest[2] / one) : 1.0);
-  }
   return m;
+}
+
+std::map<std::string, double> measure_task_inflation(const std::vector<std::vector<PhaseTrace>>& alone,
+                                                     const std::vector<std::vector<PhaseTrace>>& parallel) {
+  std::map<std::string, std::array<double, 2>> total;
+  for (const auto& step : alone)
+    for (const PhaseTrace& t : step) total[t.phase][0] += std::accumulate(t.task_ms.begin(), t.task_ms.end(), 0.0);
+  for (const auto& step : parallel)
+    for (const PhaseTrace& t : step) total[t.phase][1] += std::accumulate(t.task_ms.begin(), t.task_ms.end(), 0.0);
+  std::map<std::string, double> inflation;
+  for (const auto& [phase, ms] : total)
+    if (ms[0] > 0 && ms[1] > 0) inflation[phase] = ms[1] / ms[0];
+  return inflation;
 }
 
 double simulate_phase(const PhaseTrace& trace, int cores, const MachineModel* machine) {
   const auto& tasks = trace.task_ms;
-  const double scale = machine ? machine->slowdown(cores) / machine->slowdown(1) : 1.0;
+  const double scale = machine ? machine->inflation(trace.phase, cores) : 1.0;
   const double fork_join = machine ? std::max(0.0, machine->fork_join(cores) - machine->fork_join(1)) : 0.0;
   // Traces written by hand (tests) or before regions were recorded: one region.
   std::vector<std::size_t> begins = trace.region_begin;

@@ -11,15 +11,19 @@
 // and the phase's serial part stays serial, as does the step's time outside every phase's tasks and serial
 // parts (the "untraced" phase the pipeline adds: dispatch, allocation, clock reads).
 //
-// What the machine adds (MachineModel, measured on it by probe_machine; none = the ideal machine):
-//   fork/join    each region on N threads costs fork_join(N) − fork_join(1) more than on one
-//   bandwidth    each task runs stream_slowdown(N) times slower, as a memory-streaming loop does when N
-//                threads stream at once: the whole task is taken as memory-bound (an upper bound on the
-//                contention; the ideal machine is the lower bound)
-// Beyond the core counts the probe could measure, both stay at their last measured value: a machine with more
-// cores has its own bandwidth, which this one cannot know. Where a scheduler's tasks depend on the thread count
-// (phc, static: TraversalScheduler::splits_by_threads), the trace replayed on N cores must come from a run split
-// for N threads. Not modelled: cache effects of sharing, NUMA, SMT.
+// What the machine adds (MachineModel; none = the ideal machine):
+//   fork/join       each region on N threads costs fork_join(N) − fork_join(1) more than on one (probe_machine)
+//   task inflation  on more than one core, each task of a phase runs inflation(phase) times longer than it did
+//                   alone: memory traffic, and data one core wrote read by another (on a 2-vCPU EPYC VM the
+//                   refit's tasks take 2× as long on two cores, while a streaming loop over private data is
+//                   only 1.02× slower). Measured per phase by `ccdlab bench` as the tasks' total time in its
+//                   multi-thread run ÷ in the 1-thread run split the same way.
+// Beyond the core counts measured, both stay at their last measured value: a machine with more cores has its own
+// caches and bandwidth, which this one cannot know. Where a scheduler's tasks depend on the thread count (phc,
+// static: TraversalScheduler::splits_by_threads), the trace replayed on N cores must come from a run split for N
+// threads.
+#include <map>
+#include <string>
 #include <vector>
 
 #include "framework/util/parallel.hpp"
@@ -27,14 +31,19 @@
 namespace ccdlab {
 
 struct MachineModel {
-  std::vector<double> fork_join_ms;     ///< [n − 1]: ms to open and close a region of n threads, n = 1 … measured
-  std::vector<double> stream_slowdown;  ///< [n − 1]: a streaming pass's time per thread with n threads ÷ with 1
+  std::vector<double> fork_join_ms;  ///< [n − 1]: ms to open and close a region of n threads, n = 1 … measured
+  std::map<std::string, double> task_inflation;  ///< per phase name, on more than one core; absent = 1
   [[nodiscard]] double fork_join(int n) const;
-  [[nodiscard]] double slowdown(int n) const;
+  [[nodiscard]] double inflation(const std::string& phase, int n) const;
 };
 
-/// Measures the model on this machine for 1 … max_threads threads (about a second).
+/// Measures the fork/join cost on this machine for 1 … max_threads threads (a fraction of a second).
 MachineModel probe_machine(int max_threads);
+
+/// The tasks' total ms per phase in `parallel` (a run on more than one thread) ÷ in `alone` (one thread, the same
+/// split), over the steps of both: the task inflation of each phase that had tasks in both.
+std::map<std::string, double> measure_task_inflation(const std::vector<std::vector<PhaseTrace>>& alone,
+                                                     const std::vector<std::vector<PhaseTrace>>& parallel);
 
 /// Predicted milliseconds of one phase on `cores` cores (on `machine` when given).
 double simulate_phase(const PhaseTrace& trace, int cores, const MachineModel* machine = nullptr);

@@ -47,14 +47,26 @@ TEST(ScheduleSim, RegionsOfAPhaseEndAtABarrier) {
   EXPECT_DOUBLE_EQ(simulate_phase(t, 1), 4.0);
 }
 
-TEST(ScheduleSim, TheMachineAddsForkJoinPerRegionAndSlowsTasksByItsBandwidth) {
-  const MachineModel m{{0.1, 0.3}, {1.0, 1.5}};
+TEST(ScheduleSim, TheMachineAddsForkJoinPerRegionAndInflatesTasksOnMoreThanOneCore) {
+  const MachineModel m{{0.1, 0.3}, {{"p", 1.5}}};
   PhaseTrace t{"p", Distribution::dynamic, 1.0, {2, 2}, {}, {0, 1}};
   EXPECT_DOUBLE_EQ(simulate_phase(t, 1, &m), 5.0);                    // what one thread recorded
   EXPECT_DOUBLE_EQ(simulate_phase(t, 2, &m), 1.0 + 2 * (2 * 1.5) + 2 * 0.2);
   EXPECT_DOUBLE_EQ(simulate_phase(t, 8, &m), simulate_phase(t, 2, &m));  // beyond the probe: its last values
-  EXPECT_DOUBLE_EQ(MachineModel{}.slowdown(4), 1.0);
+  t.phase = "q";                                                        // no inflation measured: none
+  EXPECT_DOUBLE_EQ(simulate_phase(t, 2, &m), 1.0 + 2 * 2 + 2 * 0.2);
+  EXPECT_DOUBLE_EQ(MachineModel{}.inflation("p", 4), 1.0);
   EXPECT_DOUBLE_EQ(MachineModel{}.fork_join(4), 0.0);
+}
+
+TEST(ScheduleSim, TaskInflationIsTheRatioOfTaskTimePerPhase) {
+  const std::vector<std::vector<PhaseTrace>> alone{{{"a", Distribution::dynamic, 0, {1, 1}, {}}, {"s", Distribution::dynamic, 3, {}, {}}},
+                                                   {{"a", Distribution::dynamic, 0, {2}, {}}}};
+  const std::vector<std::vector<PhaseTrace>> parallel{{{"a", Distribution::dynamic, 0, {2, 2}, {}}, {"s", Distribution::dynamic, 2, {}, {}}},
+                                                      {{"a", Distribution::dynamic, 0, {2}, {}}}};
+  const auto inflation = measure_task_inflation(alone, parallel);
+  EXPECT_EQ(inflation.size(), 1u);  // a phase without tasks has none
+  EXPECT_DOUBLE_EQ(inflation.at("a"), 6.0 / 4.0);
 }
 
 TEST(ScheduleSim, TimeOutsideEveryPhaseIsSerial) {
@@ -70,10 +82,8 @@ TEST(ScheduleSim, TimeOutsideEveryPhaseIsSerial) {
 TEST(ScheduleSim, TheProbeMeasuresEveryThreadCount) {
   const MachineModel m = probe_machine(2);
   ASSERT_EQ(m.fork_join_ms.size(), 2u);
-  ASSERT_EQ(m.stream_slowdown.size(), 2u);
-  EXPECT_DOUBLE_EQ(m.stream_slowdown[0], 1.0);
-  for (double s : m.stream_slowdown) EXPECT_GE(s, 1.0);
   for (double f : m.fork_join_ms) EXPECT_GT(f, 0.0);
+  EXPECT_TRUE(m.task_inflation.empty());
 }
 
 }  // namespace
