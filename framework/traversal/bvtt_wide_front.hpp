@@ -23,7 +23,8 @@
 //           written when that is the same two records, which may prune in turn. (x, y) covers exactly the
 //           group's leaf pairs, so the cut stays a cut. (x, y)'s answer is usually known already: it is a lane
 //           pair of the visit that made the group, whose 16 answers a small cache of this step's visits keeps
-//           (else one BV test); after a failed attempt the group waits kPruneWait steps.
+//           (else one BV test); after a failed attempt the group waits kPruneWait steps, and so does a group a
+//           sprout wrote (its node pair overlapped: it was descended).
 //   REBUILD from seeds (wide_front_seeds), as the binary front does.
 // Exactness: a leaf pair is a candidate iff its k-DOPs overlap. Every non-adjacent leaf pair lies below exactly
 // one cut node; refit makes every node's k-DOP the union of its leaves', so an overlapping leaf pair's cut node
@@ -220,7 +221,9 @@ CCDLAB_AVX512_TARGET void process_wide_front(const BvttView<BV>& v, const WideFr
       room_for_visit();
       const LanePairAnswer a = visit_lane_pairs(wide_a[ra], wide_b[rb], ra, rb, lanes, self, cur);
       remember(ra, rb, a.all);
-      push_group(ra, rb, lanes & ~a.down & ~a.adjacent, false, 0);
+      // Born waiting: its node pair overlapped this step (it was descended), so an attempt next step would fail
+      // and cost a BV test on a record no visit has in cache (the binary front's kFresh rule).
+      push_group(ra, rb, lanes & ~a.down & ~a.adjacent, false, kPruneWait);
     }
     // The next group's records, asked for early (the front is read in order; its records are scattered).
     if (g + 5 < end) {
