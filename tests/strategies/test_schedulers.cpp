@@ -207,7 +207,10 @@ TEST(FrontScheduler, FrontCoversEveryNonAdjacentLeafPairExactlyOnceAndShrinksWhe
     for (Index v = half; v < Index(x.size()); ++v) x[v].z() = gap + 0.01 * std::sin(9 * x[v].x());
     return x;
   };
-  const std::vector<double> gaps{1.0, 0.5, 0.1, 0.0, 0.1, 0.5, 1.0, 1.0};
+  // Apart again for longer than kPruneWait steps: the wide front's sprouted groups wait that long before their
+  // first prune attempt.
+  std::vector<double> gaps{1.0, 0.5, 0.1, 0.0, 0.1, 0.5, 1.0};
+  gaps.insert(gaps.end(), kPruneWait + 2, 1.0);
   // Width 2: the binary front of node pairs; width 4: the wide front of record pairs (where the CPU has the
   // lane-pair walk; the binary front elsewhere).
   for (int width : {2, 4})
