@@ -9,7 +9,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <ranges>
 #include <thread>
 
 #include <unistd.h>
@@ -285,12 +284,13 @@ int bench_command(const BenchOptions& o) {
 
   // Simulated scaling from the 1-thread task costs; validated where a measured run exists.
   nlohmann::json sim_rows = nlohmann::json::array();
-  if (!o.json)
+  if (!o.json) {
+    std::vector<std::string> fork_join_us;
+    for (double ms : machine.fork_join_ms) fork_join_us.push_back(fmt::format("{:.1f}", 1e3 * ms));
     fmt::print("\nsimulated ms/step (speed-up vs {} x1) from 1-thread task costs, with this machine's fork/join ({} us on\n"
                "1..{} threads) and each phase's task inflation at {} threads; [measured, error (ideal machine's error)]:\n",
-               configs[ref].label(),
-               fmt::join(machine.fork_join_ms | std::views::transform([](double ms) { return fmt::format("{:.1f}", 1e3 * ms); }), "/"),
-               probe_threads, most_threads);
+               configs[ref].label(), fmt::join(fork_join_us, "/"), probe_threads, most_threads);
+  }
   for (std::size_t i = 0; i < measured_configs; ++i) {
     if (configs[i].threads != 1) continue;
     const MachineModel& machine = machine_of[i];
