@@ -9,9 +9,7 @@ namespace ccdlab {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return ms_between(t, Clock::now()); }
 
-constexpr std::size_t kFaceChunk = 2048;  // faces per task: large enough to amortise a hand-out, small enough to balance
 
 /// Σ size of the inner nodes of a sub-tree ÷ size of its root: grows when refit lets siblings overlap.
 template <class Vec>

@@ -9,7 +9,6 @@ namespace ccdlab {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return ms_between(t, Clock::now()); }
 
 // Chunk sizes: large enough to amortise a hand-out, a clock read and a batch's padding, small enough to balance
 // (docs/pipeline.md). An orphan costs a few ns at stage 1, a candidate ~50 feature pairs: hence the ratio.

@@ -14,9 +14,8 @@
 // What the machine adds (MachineModel; none = the ideal machine):
 //   fork/join       each region on N threads costs fork_join(N) − fork_join(1) more than on one (probe_machine)
 //   task inflation  on more than one core, each task of a phase runs inflation(phase) times longer than it did
-//                   alone: memory traffic, and data one core wrote read by another (on a 2-vCPU EPYC VM the
-//                   refit's tasks take 2× as long on two cores, while a streaming loop over private data is
-//                   only 1.02× slower). Measured per phase by `ccdlab bench` as the tasks' total time in its
+//                   alone: memory traffic, and data one core wrote read by another (docs/results-scheduling.md
+//                   has the figures). Measured per phase by `ccdlab bench` as the tasks' total time in its
 //                   multi-thread run ÷ in the 1-thread run split the same way.
 // Beyond the core counts measured, both stay at their last measured value: a machine with more cores has its own
 // caches and bandwidth, which this one cannot know. Where a scheduler's tasks depend on the thread count (phc,

@@ -25,7 +25,6 @@ AnyWideBvs make_wide_bvs(int k) { return empty_for_k<AnyWideBvs, WideBvs>(k); }
 
 void compute_face_bvs(const TriMesh& mesh, const Positions& x0, const Positions& x1, double thickness, AnyBvs& out,
                       int threads, PhaseTrace* trace) {
-  constexpr std::size_t kFaceChunk = 2048;
   PhaseTrace unused;
   FeatureBounds vertex_dops;
   vertex_dops.update(x0, x1, thickness, threads, trace ? *trace : unused);

@@ -19,6 +19,9 @@ struct SweptFaceBv {
   BV operator()(Index f) const { return bounds.face_dop<BV::k>(mesh.face(f)); }
 };
 
+/// Faces per task wherever faces are swept or boxed: large enough to amortise a hand-out, small enough to balance.
+inline constexpr std::size_t kFaceChunk = 2048;
+
 /// An AnyBvs holding an empty vector of KDop<k>; throws Error unless is_kdop_k(k).
 AnyBvs make_bvs(int k);
 AnyWideBvs make_wide_bvs(int k);

@@ -9,7 +9,6 @@ namespace ccdlab {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return ms_between(t, Clock::now()); }
 
 }  // namespace
 

@@ -61,6 +61,7 @@ struct alignas(64) PerThread {
 inline double ms_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
+inline double ms_since(std::chrono::steady_clock::time_point t) { return ms_between(t, std::chrono::steady_clock::now()); }
 
 /// The most threads any stage may use (YAML `threads`, CLI `--threads`): far more than a machine has cores, far
 /// fewer than the OpenMP runtime can create before it fails (100,000 threads crash it).
