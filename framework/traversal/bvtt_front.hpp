@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "framework/traversal/bvtt.hpp"
+#include "framework/util/uninitialized_vector.hpp"
 
 namespace ccdlab {
 
@@ -29,6 +30,8 @@ struct FrontNode {
   static constexpr std::uint8_t kFresh = 2;       ///< created this step (by a rebuild or a sprout)
 };
 static_assert(sizeof(FrontNode) == 12, "front nodes are 3 words: keep the front compact");
+/// A piece of the front, written in place (uninitialized growth).
+using FrontPiece = UninitializedVector<FrontNode>;
 
 struct FrontCounters {
   std::uint64_t bv_tests = 0, visited = 0, sprouted = 0, pruned = 0;
@@ -42,13 +45,14 @@ struct FrontCounters {
 std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b, bool self, BvttNode root = {0, 0},
                                      double granularity = 512, double min_pairs = 4096);
 
-/// Processes front nodes [begin, end): appends their replacements to `next` and candidates to `pairs`.
+/// Processes front nodes [begin, end): appends their replacements to `next` and candidates to `pairs`. The
+/// nodes of `next` before `piece_begin` are other pieces': none is pruned with them.
 /// As in traverse_bvtt_binary, the arrays are read through raw pointers held in locals (a front node's `flags`
 /// is a byte, and a store through a byte may alias anything, so through the vectors every push reloaded
 /// them), and a sprout visits the first child next without a push and a pop.
 template <class BV>
 void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNode* end, bool prune,
-                   std::vector<FrontNode>& next, FacePairs& pairs, std::vector<BvttNode>& stack,
+                   FrontPiece& next, std::size_t piece_begin, FacePairs& pairs, std::vector<BvttNode>& stack,
                    FrontCounters& counters) {
   FrontCounters c;  // local: the caller's counters are written once, at the end
   const BvhNode* const na = v.bvh_a->nodes.data();
@@ -67,7 +71,7 @@ void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNod
   // non-overlapping siblings and the parent does not overlap either.
   auto push_stop = [&](FrontNode n) {
     next.push_back(n);
-    while (prune && next.size() >= 2) {
+    while (prune && next.size() >= piece_begin + 2) {
       const FrontNode x = next[next.size() - 2], y = next.back();
       if ((x.flags | y.flags) != 0) break;  // both carried over and not overlapping
       Index pa = -1, pb = -1;

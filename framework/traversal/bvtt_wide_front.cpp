@@ -1,6 +1,7 @@
 #include "framework/traversal/bvtt_wide_front.hpp"
 
 #include <algorithm>
+#include <span>
 
 namespace ccdlab {
 
@@ -61,10 +62,10 @@ WideFrontPiece wide_front_seeds(const BvhTopology& a, const WideLayout& la, cons
   return front;
 }
 
-void append_wide_front_nodes(const WideLayout& la, const WideLayout& lb, const WideFrontPiece& groups,
-                             std::vector<FrontNode>& out) {
+void append_wide_front_nodes(const WideLayout& la, const WideLayout& lb, const WideFrontGroup* begin,
+                             const WideFrontGroup* end, std::vector<FrontNode>& out) {
   constexpr int W = WideLayout::kWidth;
-  for (const WideFrontGroup& g : groups)
+  for (const WideFrontGroup& g : std::span(begin, end))
     for (unsigned m = g.cut; m; m &= m - 1) {
       const int bit = std::countr_zero(m);
       out.push_back(FrontNode{la.lanes[std::size_t(g.ra)].node[std::size_t(bit / W)],

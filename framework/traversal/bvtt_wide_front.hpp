@@ -66,17 +66,19 @@ WideFrontPiece wide_front_seeds(const BvhTopology& a, const WideLayout& la, cons
                                              double granularity = 512, double min_pairs = 4096);
 
 /// The front's cut node pairs as binary node ids (flags 0), appended to `out`: for tests and `ccdlab export`.
-void append_wide_front_nodes(const WideLayout& la, const WideLayout& lb, const WideFrontPiece& groups,
-                             std::vector<FrontNode>& out);
+void append_wide_front_nodes(const WideLayout& la, const WideLayout& lb, const WideFrontGroup* begin,
+                             const WideFrontGroup* end, std::vector<FrontNode>& out);
 
 #if defined(CCDLAB_HAS_AVX512_WALK)
 /// Processes groups [begin, end) (AVX-512: call only where the view's lane_pairs is set): appends the next
 /// front's groups to `next` and the candidates to `pairs`. `prune`: false at a rebuild (seeds are split for
-/// balance, not to be merged back at once) or when the scheduler says so.
+/// balance, not to be merged back at once) or when the scheduler says so. The groups of `next` before
+/// `piece_begin` are other pieces': nothing is merged into them.
 template <class BV>
 CCDLAB_AVX512_TARGET void process_wide_front(const BvttView<BV>& v, const WideFrontGroup* begin,
                                              const WideFrontGroup* end, bool prune, WideFrontPiece& next,
-                                             FacePairs& pairs, LanePairStack& stack, FrontCounters& counters) {
+                                             std::size_t piece_begin, FacePairs& pairs, LanePairStack& stack,
+                                             FrontCounters& counters) {
   constexpr int W = WideLayout::kWidth;
   const WideBounds<BV>* const wide_a = v.wide_a->data();
   const WideBounds<BV>* const wide_b = v.wide_b->data();
@@ -132,12 +134,13 @@ CCDLAB_AVX512_TARGET void process_wide_front(const BvttView<BV>& v, const WideFr
   next.resize(std::max<std::size_t>(next.capacity(), written + 256));
   WideFrontGroup* gbase = next.data();
   WideFrontGroup* gout = gbase + written;
+  WideFrontGroup* gfloor = gbase + piece_begin;  // the first group of this piece: merges stop there
   WideFrontGroup* gend = gbase + next.size();
   const auto room_for_group = [&] {
     if (gout == gend) [[unlikely]] {
       written = std::size_t(gout - gbase);
       next.resize(2 * next.size());
-      gbase = next.data(), gout = gbase + written, gend = gbase + next.size();
+      gbase = next.data(), gout = gbase + written, gend = gbase + next.size(), gfloor = gbase + piece_begin;
     }
   };
   // This step's recent visits: their records and all 16 answers, direct-mapped (the answers cannot change within
@@ -161,7 +164,7 @@ CCDLAB_AVX512_TARGET void process_wide_front(const BvttView<BV>& v, const WideFr
   // quiet and is one node pair's whole visit, and that node pair does not overlap, prunes it into that node pair.
   const auto push_group = [&](Index ra, Index rb, unsigned cut, bool quiet, std::uint8_t wait) {
     if (!cut) return;
-    if (gout != gbase && gout[-1].ra == ra && gout[-1].rb == rb) {
+    if (gout != gfloor && gout[-1].ra == ra && gout[-1].rb == rb) {
       gout[-1].cut = std::uint16_t(gout[-1].cut | cut);
       gout[-1].quiet &= std::uint8_t(quiet);
       gout[-1].prune_wait = std::min(gout[-1].prune_wait, wait);
@@ -182,7 +185,7 @@ CCDLAB_AVX512_TARGET void process_wide_front(const BvttView<BV>& v, const WideFr
       --gout;
       ++c.pruned;
       const unsigned bit = 1u << (W * (hx % W) + hy % W);
-      if (gout != gbase && gout[-1].ra == hx / W && gout[-1].rb == hy / W) {
+      if (gout != gfloor && gout[-1].ra == hx / W && gout[-1].rb == hy / W) {
         gout[-1].cut = std::uint16_t(gout[-1].cut | bit);  // its quiet flag stands: (x, y) is quiet
         gout[-1].prune_wait = 0;  // a new mask: its own node pair may be whole now
       } else {

@@ -8,16 +8,19 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// A run of consecutive front pieces (piece index, entry range) processed as one task.
+/// A rebuild's front over its seeds, in entries: 3–7 on the shared real steps and cloth_ball (wide front).
+constexpr std::size_t kSeedGrowth = 8;
+
+/// A run of consecutive entries of one front piece; a task processes a few of them.
 struct Segment {
   std::size_t piece, begin, end;
 };
 
-/// Node pairs on the cut held by a piece of the front.
-std::size_t cut_nodes(const std::vector<FrontNode>& piece) { return piece.size(); }
-std::size_t cut_nodes(const WideFrontPiece& piece) {
+/// Node pairs on the cut held by entries [begin, end).
+std::size_t cut_nodes(const FrontNode* begin, const FrontNode* end) { return std::size_t(end - begin); }
+std::size_t cut_nodes(const WideFrontGroup* begin, const WideFrontGroup* end) {
   std::size_t n = 0;
-  for (const WideFrontGroup& g : piece) n += std::size_t(std::popcount(unsigned(g.cut)));
+  for (const WideFrontGroup* g = begin; g != end; ++g) n += std::size_t(std::popcount(unsigned(g->cut)));
   return n;
 }
 
@@ -27,54 +30,77 @@ struct FrontLocal {
   FrontCounters counters;
 };
 
+/// Empties `buffers` and makes `n` of them, each with room for `entries` entries at least. A buffer that must
+/// grow gets half as much again, and kLargeAllocation bytes at least (see Store), so that a front growing by a
+/// little every step does not move to new memory every step; room that is not written costs no memory.
+template <class Buffer>
+void prepare_buffers(std::vector<PerThread<Buffer>>& buffers, std::size_t n, std::size_t entries) {
+  if (buffers.size() < n) buffers.resize(n);
+  for (auto& b : buffers) {
+    b.value.clear();
+    if (b.value.capacity() < entries)
+      b.value.reserve(std::max(entries + entries / 2, kLargeAllocation / sizeof(typename Buffer::value_type)));
+  }
+}
+
 }  // namespace
 
-template <class Piece, class Process>
-void FrontScheduler::run(const TraversalPass& pass, PassFront& front, std::vector<Piece>& pieces,
-                         std::vector<Piece>& spare, std::size_t chunk, TraversalOutput& out, PhaseTrace& trace,
-                         Process&& process) {
-  using Entry = typename Piece::value_type;
+template <class Entry>
+template <class Seeds>
+void FrontScheduler::Store<Entry>::seed(const Seeds& seeds) {
+  prepare_buffers(buffers, 1, seeds.size());
+  buffers[0].value.assign(seeds.begin(), seeds.end());
+  pieces.assign(1, Piece{0, 0, seeds.size()});
+}
+
+template <class Entry, class Process>
+void FrontScheduler::run(const TraversalPass& pass, PassFront& front, Store<Entry>& store, bool rebuild,
+                         std::size_t chunk, TraversalOutput& out, PhaseTrace& trace, Process&& process) {
   const auto t_serial = Clock::now();
   // Tasks: consecutive pieces cut into runs of at most `chunk` entries.
   std::vector<std::vector<Segment>> tasks;
-  std::size_t filled = chunk;
-  for (std::size_t p = 0; p < pieces.size(); ++p)
-    for (std::size_t b = 0; b < pieces[p].size();) {
+  std::size_t filled = chunk, entries_in = 0;
+  for (std::size_t p = 0; p < store.pieces.size(); ++p) {
+    const std::size_t size = store.pieces[p].end - store.pieces[p].begin;
+    entries_in += size;
+    for (std::size_t b = 0; b < size;) {
       if (filled == chunk) tasks.emplace_back(), filled = 0;
-      const std::size_t e = std::min(pieces[p].size(), b + (chunk - filled));
+      const std::size_t e = std::min(size, b + (chunk - filled));
       tasks.back().push_back({p, b, e});
       filled += e - b;
       b = e;
     }
-  const int threads = pass.threads;
-  std::vector<PerThread<Piece>> next(tasks.size());  // padded: neighbours written concurrently
-  for (std::size_t t = 0; t < std::min(tasks.size(), spare.size()); ++t) {
-    next[t].value = std::move(spare[t]);
-    next[t].value.clear();
   }
+  const int threads = pass.threads;
+  // Room in every buffer for the whole next front (any thread may write most of it), so that no buffer grows by
+  // copying into fresh memory: about this front's size, or, from seeds, kSeedGrowth times theirs.
+  prepare_buffers(store.spare, std::size_t(threads), rebuild ? kSeedGrowth * entries_in : entries_in + entries_in / 4);
+  std::vector<typename Store<Entry>::Piece> made(tasks.size());
   std::vector<std::size_t> nodes(tasks.size());
   std::vector<PerThread<FrontLocal>> local(threads);
   out.pairs.use_parts(threads);
   trace.serial_ms += ms_between(t_serial, Clock::now());
 
   parallel_chunks(tasks.size(), 1, threads, trace, [&](std::size_t t, std::size_t, int tid) {
-    Piece& piece = next[t].value;
-    piece.reserve(chunk + chunk / 4);
+    auto& buffer = store.spare[std::size_t(tid)].value;
+    const std::size_t begin = buffer.size();
     for (const Segment& s : tasks[t]) {
-      const Entry* entries = pieces[s.piece].data();
-      process(entries + s.begin, entries + s.end, piece, out.pairs.part(tid), local[tid].value);
+      const Entry* entries = store.data(store.pieces[s.piece]);
+      process(entries + s.begin, entries + s.end, buffer, begin, out.pairs.part(tid), local[tid].value);
     }
-    nodes[t] = cut_nodes(piece);
+    made[t] = {std::size_t(tid), begin, buffer.size()};
+    nodes[t] = cut_nodes(buffer.data() + begin, buffer.data() + buffer.size());
     out.hand_over(tid);
   });
 
   const auto t_merge = Clock::now();
-  spare = std::move(pieces);
-  pieces.resize(next.size());
+  std::swap(store.buffers, store.spare);
+  store.pieces = std::move(made);
   front.size = 0;
-  for (std::size_t t = 0; t < next.size(); ++t) {
-    pieces[t] = std::move(next[t].value);
+  std::size_t entries = 0;
+  for (std::size_t t = 0; t < tasks.size(); ++t) {
     front.size += nodes[t];
+    entries += store.pieces[t].end - store.pieces[t].begin;
   }
   if (front.size_after_rebuild == 0) front.size_after_rebuild = front.size;
   for (int t = 0; t < threads; ++t) {
@@ -84,11 +110,9 @@ void FrontScheduler::run(const TraversalPass& pass, PassFront& front, std::vecto
     out.stats.sprouted += c.sprouted;
     out.stats.pruned += c.pruned;
   }
-  std::size_t entries = 0;
-  for (const auto& piece : pieces) entries += piece.size();
   out.stats.tasks += tasks.size();
   out.stats.front_nodes += front.size;
-  out.stats.front_bytes += entries * sizeof(Entry) + pieces.size() * sizeof(Piece);
+  out.stats.front_bytes += entries * sizeof(Entry) + store.pieces.size() * sizeof(typename Store<Entry>::Piece);
   trace.serial_ms += ms_between(t_merge, Clock::now());
 }
 
@@ -107,20 +131,18 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
     const bool due = params_.rebuild_every > 0 && front.steps_since_rebuild >= params_.rebuild_every;
     // Adaptive restructuring changed which leaves a node covers: the front must restart (its rebuild policy).
     const std::uint64_t version = pass.bvh_a->version + (pass.self ? 0 : pass.bvh_b->version);
-    const bool none = wide ? front.wide_pieces.empty() : front.pieces.empty();
+    const bool none = wide ? front.wide.empty() : front.binary.empty();
     const bool rebuild = none || grown || due || version != front.bvh_version;
     if (rebuild) {
       front.bvh_version = version;
-      front.pieces.clear();
-      front.wide_pieces.clear();
-      front.spare.clear();
-      front.wide_spare.clear();
+      front.binary.clear();
+      front.wide.clear();
       if (wide) {
         front.layout_a = view.wide_layout_a, front.layout_b = view.wide_layout_b;
-        front.wide_pieces.assign(1, wide_front_seeds(*pass.bvh_a, *view.wide_layout_a, *pass.bvh_b,
-                                                     *view.wide_layout_b, pass.self, pass.root));
+        front.wide.seed(wide_front_seeds(*pass.bvh_a, *view.wide_layout_a, *pass.bvh_b, *view.wide_layout_b,
+                                         pass.self, pass.root));
       } else {
-        front.pieces.assign(1, initial_front(*pass.bvh_a, *pass.bvh_b, pass.self, pass.root));
+        front.binary.seed(initial_front(*pass.bvh_a, *pass.bvh_b, pass.self, pass.root));
       }
       front.steps_since_rebuild = 0;
       front.size_after_rebuild = 0;
@@ -133,15 +155,18 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
     if (wide) {
       // Seeds are split for balance: not merged back in the step that made them.
       const bool prune = params_.prune && !rebuild;
-      run(pass, front, front.wide_pieces, front.wide_spare, chunk, out, trace,
-          [&](const WideFrontGroup* b, const WideFrontGroup* e, WideFrontPiece& next, FacePairs& pairs,
-              FrontLocal& l) { process_wide_front(view, b, e, prune, next, pairs, l.stack.lane_pairs, l.counters); });
+      run(pass, front, front.wide, rebuild, chunk, out, trace,
+          [&](const WideFrontGroup* b, const WideFrontGroup* e, WideFrontPiece& next, std::size_t piece_begin,
+              FacePairs& pairs, FrontLocal& l) {
+            process_wide_front(view, b, e, prune, next, piece_begin, pairs, l.stack.lane_pairs, l.counters);
+          });
       return;
     }
 #endif
-    run(pass, front, front.pieces, front.spare, chunk, out, trace,
-        [&](const FrontNode* b, const FrontNode* e, std::vector<FrontNode>& next, FacePairs& pairs, FrontLocal& l) {
-          process_front(view, b, e, params_.prune, next, pairs, l.stack.binary, l.counters);
+    run(pass, front, front.binary, rebuild, chunk, out, trace,
+        [&](const FrontNode* b, const FrontNode* e, FrontPiece& next, std::size_t piece_begin, FacePairs& pairs,
+            FrontLocal& l) {
+          process_front(view, b, e, params_.prune, next, piece_begin, pairs, l.stack.binary, l.counters);
         });
   });
   out.stats.serial_ms += trace.serial_ms;
@@ -154,9 +179,10 @@ std::vector<FrontNode> FrontScheduler::front(int pass_id) const {
   std::vector<FrontNode> all;
   auto it = fronts_.find(pass_id);
   if (it == fronts_.end()) return all;
-  for (const auto& piece : it->second.pieces) all.insert(all.end(), piece.begin(), piece.end());
-  for (const auto& piece : it->second.wide_pieces)
-    append_wide_front_nodes(*it->second.layout_a, *it->second.layout_b, piece, all);
+  const PassFront& f = it->second;
+  for (const auto& piece : f.binary.pieces) all.insert(all.end(), f.binary.data(piece), f.binary.data(piece) + (piece.end - piece.begin));
+  for (const auto& piece : f.wide.pieces)
+    append_wide_front_nodes(*f.layout_a, *f.layout_b, f.wide.data(piece), f.wide.data(piece) + (piece.end - piece.begin), all);
   return all;
 }
 

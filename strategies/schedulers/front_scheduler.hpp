@@ -14,6 +14,9 @@
 #include "framework/traversal/bvtt_front.hpp"
 #include "framework/traversal/bvtt_wide_front.hpp"
 #include "framework/traversal/scheduler.hpp"
+#include "framework/util/memory.hpp"
+#include "framework/util/parallel.hpp"
+#include "framework/util/uninitialized_vector.hpp"
 
 namespace ccdlab {
 
@@ -34,13 +37,31 @@ class FrontScheduler final : public TraversalScheduler {
   [[nodiscard]] std::vector<FrontNode> front(int pass_id) const;
 
  private:
+  /// A front's entries, kept across steps. Each task of a step writes the piece it makes at the end of its
+  /// thread's buffer, so the front is a list of pieces, in BVTT order, each a range of one buffer; the next step
+  /// reads them and writes into the other set of buffers (`spare`), whose capacity it keeps. A buffer starts at
+  /// kLargeAllocation bytes, so it lies in huge pages (framework/util/memory.hpp): a rebuild writes the whole
+  /// front at once, and in a separate allocation per piece, fresh 4 KiB pages, it faulted ~1.4K times on
+  /// rod-twist, a third of the seeding step (docs/results-scheduling.md).
+  template <class Entry>
+  struct Store {
+    using Buffer = UninitializedVector<Entry>;
+    struct Piece {
+      std::size_t buffer, begin, end;
+    };
+    std::vector<Piece> pieces;
+    std::vector<PerThread<Buffer>> buffers;  ///< the pieces' buffers, by the thread that wrote them
+    std::vector<PerThread<Buffer>> spare;    ///< emptied at the next step, which writes into them
+    [[nodiscard]] bool empty() const { return pieces.empty(); }
+    [[nodiscard]] const Entry* data(const Piece& p) const { return buffers[p.buffer].value.data() + p.begin; }
+    /// Replaces the front by `seeds`, as one piece.
+    template <class Seeds>
+    void seed(const Seeds& seeds);
+    void clear() { pieces.clear(); }
+  };
   struct PassFront {
-    std::vector<std::vector<FrontNode>> pieces;  ///< the binary front
-    std::vector<WideFrontPiece> wide_pieces;     ///< or the wide one
-    // The pieces of the step before, emptied: the next step writes into them (fresh pieces every step made it
-    // fault and zero a front's worth of pages again).
-    std::vector<std::vector<FrontNode>> spare;
-    std::vector<WideFrontPiece> wide_spare;
+    Store<FrontNode> binary;     ///< the binary front
+    Store<WideFrontGroup> wide;  ///< or the wide one
     const WideLayout* layout_a = nullptr;  ///< the wide front's layouts (its record ids mean nothing without them)
     const WideLayout* layout_b = nullptr;
     std::size_t size = 0;  ///< node pairs on the cut
@@ -50,9 +71,9 @@ class FrontScheduler final : public TraversalScheduler {
   };
   /// One step of a front: its pieces cut into tasks of at most `chunk` entries, `process` on threads, the new
   /// pieces kept and counted.
-  template <class Piece, class Process>
-  void run(const TraversalPass& pass, PassFront& front, std::vector<Piece>& pieces, std::vector<Piece>& spare,
-           std::size_t chunk, TraversalOutput& out, PhaseTrace& trace, Process&& process);
+  template <class Entry, class Process>
+  void run(const TraversalPass& pass, PassFront& front, Store<Entry>& store, bool rebuild, std::size_t chunk,
+           TraversalOutput& out, PhaseTrace& trace, Process&& process);
   Params params_{};
   std::map<int, PassFront> fronts_;  ///< by TraversalPass::id
 };
