@@ -6,8 +6,8 @@
 namespace ccdlab {
 
 WideFrontPiece wide_front_seeds(const BvhTopology& a, const WideLayout& la, const BvhTopology& b,
-                                             const WideLayout& lb, bool self, BvttNode root, double granularity,
-                                             double min_pairs) {
+                                const WideLayout& lb, bool self, BvttNode root, bool self_nodes, double granularity,
+                                double min_pairs) {
   constexpr int W = WideLayout::kWidth;
   WideFrontPiece front;
   if (a.nodes.empty() || b.nodes.empty()) return front;
@@ -56,9 +56,28 @@ WideFrontPiece wide_front_seeds(const BvhTopology& a, const WideLayout& la, cons
     split(Side{root.a, la.home[std::size_t(root.a)]}, Side{root.b, lb.home[std::size_t(root.b)]});
     return front;
   }
-  for (Index i = root.a; i < a.subtree_end(root.a); ++i)
-    if (const BvhNode& n = a.nodes[std::size_t(i)]; !n.is_leaf())
-      split(Side{n.left, la.home[std::size_t(n.left)]}, Side{n.right, la.home[std::size_t(n.right)]});
+  if (!self_nodes) {
+    for (Index i = root.a; i < a.subtree_end(root.a); ++i)
+      if (const BvhNode& n = a.nodes[std::size_t(i)]; !n.is_leaf())
+        split(Side{n.left, la.home[std::size_t(n.left)]}, Side{n.right, la.home[std::size_t(n.right)]});
+    return front;
+  }
+  // Self nodes from the top, in pre-order: small enough, a seed; else (L, R) split as above, then L and R.
+  std::vector<Index> selfs{root.a};
+  while (!selfs.empty()) {
+    const Index i = selfs.back();
+    selfs.pop_back();
+    const BvhNode& n = a.nodes[std::size_t(i)];
+    if (n.is_leaf()) continue;
+    const double c = a.leaf_count[std::size_t(i)];
+    if (c * (c - 1) / 2 <= max_pairs) {
+      add(la.home[std::size_t(i)], la.home[std::size_t(i)]);
+      continue;
+    }
+    split(Side{n.left, la.home[std::size_t(n.left)]}, Side{n.right, la.home[std::size_t(n.right)]});
+    selfs.push_back(n.right);
+    selfs.push_back(n.left);
+  }
   return front;
 }
 

@@ -25,7 +25,14 @@
 //           pair of the visit that made the group, whose 16 answers a small cache of this step's visits keeps
 //           (else one BV test); after a failed attempt the group waits kPruneWait steps, and so does a group a
 //           sprout wrote (its node pair overlapped: it was descended).
-//   REBUILD from seeds (wide_front_seeds), as the binary front does.
+//   REBUILD from seeds (wide_front_seeds). In a self pass whose step skips no patch (normal cones), the seeds
+//           below some depth are SELF NODES, lane pair (i, i) of one record: not node pairs on a cut but
+//           sub-trees the first step walks as traverse_bvtt_lane_pairs does (a self node opens into (L, L),
+//           (R, R) and (L, R) untested), so that step is that walk plus the groups it writes. Seeding with the
+//           node pairs (L, R) of every inner node instead — the binary front's way, still used where patches are
+//           skipped — made it a walk of thousands of shallow sprouts whose first record reads all missed
+//           (docs/results-scheduling.md). Every self seed is opened in that step (none is in a skipped patch), so
+//           no self node is ever on the cut after it.
 // Exactness: a leaf pair is a candidate iff its k-DOPs overlap. Every non-adjacent leaf pair lies below exactly
 // one cut node; refit makes every node's k-DOP the union of its leaves', so an overlapping leaf pair's cut node
 // overlaps, and so does every node the sprout walk visits on the way down to it: it is found, once. Nothing else
@@ -53,6 +60,8 @@ inline constexpr std::uint8_t kPruneWait = 8;
 /// The wait of a group that is no node pair's whole visit: until its mask changes (which resets every wait), or
 /// this many steps.
 inline constexpr std::uint8_t kNoPruneWhileSame = 255;
+/// The lane pairs (i, i) of a group: in a self pass, with one record on both sides, the self nodes (x, x).
+inline constexpr unsigned kDiagonalLanePairs = 0x8421u;
 /// A piece of the front, written in place (uninitialized growth: a piece is rewritten whole every step).
 using WideFrontPiece = UninitializedVector<WideFrontGroup>;
 static_assert(sizeof(WideFrontGroup) == 12, "a group is 3 words: keep the front compact");
@@ -61,9 +70,11 @@ static_assert(sizeof(WideFrontGroup) == 12, "a group is 3 words: keep the front 
 /// every inner node under a self node, the node itself otherwise, each split into the lane pairs of its visit
 /// (without a BV test: they cover the same leaf pairs) until it covers at most 1/`granularity` of the pass's leaf
 /// pairs (and no fewer than `min_pairs`), so that the first step's sprouts are spread over many tasks.
+/// With `self_nodes` (a self pass's step that skips no patch), a self node covering that many leaf pairs or
+/// fewer is a seed itself, lane pair (i, i) of the record holding it, and the nodes below it seed nothing.
 WideFrontPiece wide_front_seeds(const BvhTopology& a, const WideLayout& la, const BvhTopology& b,
-                                             const WideLayout& lb, bool self, BvttNode root = {0, 0},
-                                             double granularity = 512, double min_pairs = 4096);
+                                const WideLayout& lb, bool self, BvttNode root = {0, 0}, bool self_nodes = false,
+                                double granularity = 512, double min_pairs = 4096);
 
 /// The front's cut node pairs as binary node ids (flags 0), appended to `out`: for tests and `ccdlab export`.
 void append_wide_front_nodes(const WideLayout& la, const WideLayout& lb, const WideFrontGroup* begin,
@@ -84,6 +95,7 @@ CCDLAB_AVX512_TARGET void process_wide_front(const BvttView<BV>& v, const WideFr
   const WideBounds<BV>* const wide_b = v.wide_b->data();
   const WideLayout& la = *v.wide_layout_a;
   const WideLayout& lb = *v.wide_layout_b;
+  const BvhNode* const na = v.bvh_a->nodes.data();
   const bool self = v.self;
   FrontCounters c;  // local: the caller's are written once, at the end
   LanePairCursor cur{nullptr, nullptr, nullptr, nullptr, 0, nullptr};
@@ -203,14 +215,22 @@ CCDLAB_AVX512_TARGET void process_wide_front(const BvttView<BV>& v, const WideFr
                                lb.lanes[std::size_t(g->rb)].node[std::size_t(bit % W)]))
           held |= 1u << bit;
       }
-    const unsigned allowed = g->cut & ~held;
+    // Self seeds (a rebuild's only: see REBUILD), pushed for the walk below; the rest is visited.
+    const unsigned self_seeds = self && g->ra == g->rb ? g->cut & kDiagonalLanePairs : 0;
+    const unsigned allowed = g->cut & ~held & ~self_seeds;
     ++c.visited;
     c.bv_tests += unsigned(std::popcount(allowed));
+    for (unsigned m = self_seeds; m; m &= m - 1) {
+      const Index x = la.lanes[std::size_t(g->ra)].node[std::size_t(std::countr_zero(m) / W)];
+      room_for_visit();
+      cur.col_ha[cur.top] = cur.col_hb[cur.top] = x, cur.col_wa[cur.top] = cur.col_wb[cur.top] = -1;
+      ++cur.top;
+    }
     room_for_visit();
     const LanePairAnswer kept = visit_lane_pairs(wide_a[g->ra], wide_b[g->rb], g->ra, g->rb, allowed, self, cur);
     remember(g->ra, g->rb, kept.all);
-    c.sprouted += unsigned(std::popcount(kept.down));
-    const unsigned cut = g->cut & ~kept.down & ~kept.adjacent;
+    c.sprouted += unsigned(std::popcount(kept.down | self_seeds));
+    const unsigned cut = g->cut & ~kept.down & ~kept.adjacent & ~self_seeds;
     const std::uint8_t wait = cut != g->cut || g->prune_wait == 0 ? 0 : std::uint8_t(g->prune_wait - 1);
     push_group(g->ra, g->rb, cut, kept.hit == 0 && held == 0 && wait == 0, wait);
     // Sprouts: the walk below every lane pair pushed, each visit leaving the group of what it did not descend.
@@ -218,6 +238,22 @@ CCDLAB_AVX512_TARGET void process_wide_front(const BvttView<BV>& v, const WideFr
       --cur.top;
       const Index ha = cur.col_ha[cur.top], hb = cur.col_hb[cur.top], wa = cur.col_wa[cur.top], wb = cur.col_wb[cur.top];
       if (cur.top >= 2) prefetch_entry_records(wide_a, wide_b, cur, cur.top - 2);
+      if (self && ha == hb) {  // a self node (by node id, as the walk pushes it; a pair node's homes differ)
+        // Self seeds exist only where no patch is skipped, so self_opens is "not a leaf" here (else a skipped
+        // node would leave the cut).
+        if (const BvhNode& x = na[ha]; v.self_opens(x, ha)) {
+          // As traverse_bvtt_lane_pairs: (L, R) untested, (R, R), then (L, L) on top.
+          const auto push = [&](Index h_a, Index h_b, Index w_a, Index w_b) {
+            cur.col_ha[cur.top] = h_a, cur.col_hb[cur.top] = h_b, cur.col_wa[cur.top] = w_a, cur.col_wb[cur.top] = w_b;
+            ++cur.top;
+          };
+          room_for_visit();
+          push(la.home[std::size_t(x.left)], la.home[std::size_t(x.right)], la.slot[std::size_t(x.left)], la.slot[std::size_t(x.right)]);
+          push(x.right, x.right, -1, -1);
+          push(x.left, x.left, -1, -1);
+        }
+        continue;
+      }
       Index ra, rb;
       const unsigned lanes = entry_lane_pairs(wide_a, wide_b, ha, hb, wa, wb, ra, rb);
       c.bv_tests += unsigned(std::popcount(lanes));

@@ -1,5 +1,6 @@
 #include "strategies/schedulers/front_scheduler.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <chrono>
 
@@ -8,8 +9,12 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// A rebuild's front over its seeds, in entries: 3–7 on the shared real steps and cloth_ball (wide front).
+/// A rebuild's front, for the room its buffers get: 3–7 entries per node pair seed, and 2.7–5.4 wide groups per
+/// leaf, on the shared real steps and cloth_ball (a self seed grows into far more than 8).
 constexpr std::size_t kSeedGrowth = 8;
+constexpr std::size_t kRebuildEntriesPerLeaf = 8;
+/// Tasks of a rebuild step (see collect).
+constexpr std::size_t kRebuildTasks = 256;
 
 /// A run of consecutive entries of one front piece; a task processes a few of them.
 struct Segment {
@@ -73,8 +78,11 @@ void FrontScheduler::run(const TraversalPass& pass, PassFront& front, Store<Entr
   }
   const int threads = pass.threads;
   // Room in every buffer for the whole next front (any thread may write most of it), so that no buffer grows by
-  // copying into fresh memory: about this front's size, or, from seeds, kSeedGrowth times theirs.
-  prepare_buffers(store.spare, std::size_t(threads), rebuild ? kSeedGrowth * entries_in : entries_in + entries_in / 4);
+  // copying into fresh memory: about this front's size, or, from seeds, the larger of kSeedGrowth times theirs
+  // and kRebuildEntriesPerLeaf per leaf.
+  const std::size_t leaves = std::size_t(pass.bvh_a->num_leaves() + (pass.self ? 0 : pass.bvh_b->num_leaves()));
+  prepare_buffers(store.spare, std::size_t(threads),
+                  rebuild ? std::max(kSeedGrowth * entries_in, kRebuildEntriesPerLeaf * leaves) : entries_in + entries_in / 4);
   std::vector<typename Store<Entry>::Piece> made(tasks.size());
   std::vector<std::size_t> nodes(tasks.size());
   std::vector<PerThread<FrontLocal>> local(threads);
@@ -139,8 +147,9 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
       front.wide.clear();
       if (wide) {
         front.layout_a = view.wide_layout_a, front.layout_b = view.wide_layout_b;
+        // Self nodes as seeds unless this step skips patches (REBUILD in bvtt_wide_front.hpp).
         front.wide.seed(wide_front_seeds(*pass.bvh_a, *view.wide_layout_a, *pass.bvh_b, *view.wide_layout_b,
-                                         pass.self, pass.root));
+                                         pass.self, pass.root, view.skip_root == nullptr));
       } else {
         front.binary.seed(initial_front(*pass.bvh_a, *pass.bvh_b, pass.self, pass.root));
       }
@@ -150,7 +159,13 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
     }
     ++front.steps_since_rebuild;
     trace.serial_ms += ms_between(t_serial, Clock::now());
-    const std::size_t chunk = std::size_t(params_.chunk);
+    // A rebuild's tasks: about kRebuildTasks of them, as its seeds are fewer than the front (self seeds: a few
+    // hundred) and each sprouts much more.
+    std::size_t chunk = std::size_t(params_.chunk);
+    if (rebuild) {
+      const std::size_t seeds = wide ? front.wide.pieces[0].end : front.binary.pieces[0].end;
+      chunk = std::clamp<std::size_t>(seeds / kRebuildTasks, 1, chunk);
+    }
 #if defined(CCDLAB_HAS_AVX512_WALK)
     if (wide) {
       // Seeds are split for balance: not merged back in the step that made them.
