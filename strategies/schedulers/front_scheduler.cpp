@@ -4,13 +4,15 @@
 #include <bit>
 #include <chrono>
 
+#include "framework/util/memory.hpp"
+
 namespace ccdlab {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// A rebuild's front, for the room its buffers get: 3–7 entries per node pair seed, and 2.7–5.4 wide groups per
-/// leaf, on the shared real steps and cloth_ball (a self seed grows into far more than 8).
+/// A rebuild's front, for the room its buffers get: entries per node pair seed and per leaf, above what the
+/// shared real steps and cloth_ball reach (docs/results-scheduling.md); a self seed grows into far more.
 constexpr std::size_t kSeedGrowth = 8;
 constexpr std::size_t kRebuildEntriesPerLeaf = 8;
 /// Tasks of a rebuild step (see collect).

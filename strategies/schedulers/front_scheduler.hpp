@@ -14,7 +14,6 @@
 #include "framework/traversal/bvtt_front.hpp"
 #include "framework/traversal/bvtt_wide_front.hpp"
 #include "framework/traversal/scheduler.hpp"
-#include "framework/util/memory.hpp"
 #include "framework/util/parallel.hpp"
 #include "framework/util/uninitialized_vector.hpp"
 
@@ -41,8 +40,8 @@ class FrontScheduler final : public TraversalScheduler {
   /// thread's buffer, so the front is a list of pieces, in BVTT order, each a range of one buffer; the next step
   /// reads them and writes into the other set of buffers (`spare`), whose capacity it keeps. A buffer starts at
   /// kLargeAllocation bytes, so it lies in huge pages (framework/util/memory.hpp): a rebuild writes the whole
-  /// front at once, and in a separate allocation per piece, fresh 4 KiB pages, it faulted ~1.4K times on
-  /// rod-twist, a third of the seeding step (docs/results-scheduling.md).
+  /// front at once, and a separate allocation per piece took a fault per fresh 4 KiB page
+  /// (docs/results-scheduling.md, "The front's pieces in thread buffers").
   template <class Entry>
   struct Store {
     using Buffer = UninitializedVector<Entry>;
