@@ -26,7 +26,10 @@ nlohmann::json step_json(const StepResult& r) {
             {"tests_filtered", c.tests_filtered},
             {"tests_fallback", c.tests_fallback}}},
           {"narrow_stages",  // pairs removed by each culling stage; thread-time of each stage
-           {{"kdop_culled", c.kdop_culled},
+           {{"triangle_tested", c.triangle_tested},
+            {"triangle_culled", c.triangle_culled},
+            {"triangle_ms", double(c.triangle_ns) * 1e-6},
+            {"kdop_culled", c.kdop_culled},
             {"plane_culled", c.plane_culled},
             {"split_culled", c.split_culled},
             {"split_ms", double(c.split_ns) * 1e-6},

@@ -7,6 +7,7 @@
 #include "framework/narrow/plane_filter.hpp"
 #include "framework/narrow/proximity_filter.hpp"
 #include "framework/primitive/feature_pairs.hpp"
+#include "framework/traversal/candidates.hpp"
 #include "framework/util/uninitialized_vector.hpp"
 
 namespace ccdlab {
@@ -25,6 +26,7 @@ struct FeatureBatch {
 
 /// Per-thread working memory of the narrow phase, reused from chunk to chunk (no allocation in steady state).
 struct NarrowScratch {
+  UninitializedVector<FacePair> candidates;  ///< stage 0's survivors, gathered from
   FeatureBatch batch;
   PlaneBatch plane;
   std::vector<std::uint8_t> keep;

@@ -11,6 +11,8 @@ struct NarrowCounters {
   std::uint64_t orphan_vf = 0;       ///< of which from the orphan set
   std::uint64_t orphan_ee = 0;
   std::uint64_t orphans_culled = 0;  ///< orphan pairs inside a patch skipped by normal-cone culling
+  std::uint64_t triangle_tested = 0;  ///< candidate face pairs stage 0 ran on (batched only, steps where it pays)
+  std::uint64_t triangle_culled = 0;  ///< of which proven apart before their gather
   std::uint64_t kdop_culled = 0;     ///< pairs whose swept feature 26-DOPs are disjoint (stage 1, every mode)
   std::uint64_t plane_culled = 0;    ///< pairs proven to stay off each other's plane/line (stage 2, batched only)
   std::uint64_t split_culled = 0;    ///< pairs proven apart on every half or sixteenth of the step (stage 3, batched only)
@@ -24,6 +26,7 @@ struct NarrowCounters {
   std::uint64_t contacts_ee = 0;
   // Thread-time per stage, nanoseconds summed over threads (batched mode; scalar mode interleaves them and
   // reports all of it as test_ns).
+  std::uint64_t triangle_ns = 0;  ///< stage 0
   std::uint64_t gather_ns = 0;  ///< feature pairs of candidate face pairs (representative rule)
   std::uint64_t kdop_ns = 0;    ///< stage 1
   std::uint64_t plane_ns = 0;   ///< stage 2 (staging the coordinates included)
@@ -33,7 +36,8 @@ struct NarrowCounters {
 
   NarrowCounters& operator+=(const NarrowCounters& o) {
     vf_pairs += o.vf_pairs, ee_pairs += o.ee_pairs, orphan_vf += o.orphan_vf, orphan_ee += o.orphan_ee;
-    orphans_culled += o.orphans_culled, kdop_culled += o.kdop_culled, plane_culled += o.plane_culled;
+    orphans_culled += o.orphans_culled, triangle_tested += o.triangle_tested, triangle_culled += o.triangle_culled, triangle_ns += o.triangle_ns;
+    kdop_culled += o.kdop_culled, plane_culled += o.plane_culled;
     split_culled += o.split_culled, split_ns += o.split_ns;
     proximity_culled += o.proximity_culled, proximity_ns += o.proximity_ns;
     vf_tests += o.vf_tests, ee_tests += o.ee_tests, orphan_tests += o.orphan_tests;

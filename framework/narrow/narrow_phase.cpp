@@ -1,9 +1,11 @@
 #include "framework/narrow/narrow_phase.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "framework/narrow/proximity_filter.hpp"
 #include "framework/narrow/split_filter.hpp"
+#include "framework/narrow/triangle_filter.hpp"
 
 #include "framework/util/error.hpp"
 
@@ -11,6 +13,13 @@ namespace ccdlab {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+/// Stage 0 runs in a step when the last step that ran it culled at least this share of its candidates: below,
+/// it costs more than the later stages save (docs/narrow-phase.md, "Stage 0"). It runs on the first step and
+/// every kTriangleRemeasure-th, to measure again. A rule per step, from whole-step counts, keeps every work
+/// counter independent of how the candidates are cut into chunks (schedulers, threads, slices).
+constexpr double kTriangleCullPays = 0.7;
+constexpr std::uint64_t kTriangleRemeasure = 8;
 std::uint64_t ns_since(Clock::time_point t) {
   return std::uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t).count());
 }
@@ -70,10 +79,32 @@ void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const
   x_t0_ = &x_t0;
   x_t1_ = &x_t1;
   bounds_ = &bounds;
+  triangle_stage_ = options_.mode == NarrowMode::batched && tester_.cull_reach() &&
+                    (steps_ % kTriangleRemeasure == 0 || triangle_cull_rate_ >= kTriangleCullPays);
 }
 
-void NarrowPhase::gather(std::span<const FacePair> candidates, FeatureBatch& batch) const {
-  reps_.append_pairs(candidates, batch.vf, batch.ee);
+void NarrowPhase::end_step(const NarrowCounters& step) {
+  if (step.triangle_tested > 0) triangle_cull_rate_ = double(step.triangle_culled) / double(step.triangle_tested);
+  ++steps_;
+}
+
+void NarrowPhase::gather(std::span<const FacePair> candidates, NarrowScratch& scratch, NarrowCounters& c,
+                         bool cull) const {
+  FeatureBatch& batch = scratch.batch;
+  const auto reach = tester_.cull_reach();
+  if (!cull || !triangle_stage_ || !reach || candidates.empty()) {
+    reps_.append_pairs(candidates, batch.vf, batch.ee);
+    return;
+  }
+  const auto t = Clock::now();
+  scratch.keep.resize(candidates.size());
+  triangle_filter(candidates, mesh_.faces().data(), x_t0_->data(), x_t1_->data(), *reach, scratch.keep.data());
+  scratch.candidates.clear();
+  append_kept(candidates, scratch.keep.data(), scratch.candidates);
+  c.triangle_tested += candidates.size();
+  c.triangle_culled += candidates.size() - scratch.candidates.size();
+  c.triangle_ns += ns_since(t);
+  reps_.append_pairs(scratch.candidates, batch.vf, batch.ee);
 }
 
 void NarrowPhase::gather_orphans(std::span<const VertexFacePair> vf, std::span<const EdgeEdgePair> ee,

@@ -2,6 +2,7 @@
 // The narrow phase of one step, one stage of its own (design.md): candidate face pairs → feature pairs →
 // culling → elementary tests → contacts. Nothing below the pipeline depends on it.
 //
+//   stage 0  candidate face pairs proven apart as whole triangles (triangle_filter.hpp)  batched mode, testers with a reach
 //   gather   the feature pairs each candidate represents (representatives.hpp), or a chunk of orphans
 //   stage 1  swept feature 26-DOPs overlap (feature_bounds.hpp, SIMD)     every mode; defines the contact set
 //            (batched: a coarse 16-bit copy first, the float test itself after stage 4)
@@ -49,9 +50,13 @@ class NarrowPhase {
   /// the caller for this step with the tester's thickness: the pipeline's swept volumes). All three must
   /// outlive the step.
   void begin_step(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& bounds);
+  /// The step's merged counters: stage 0's cull rate decides whether it runs in the next steps.
+  void end_step(const NarrowCounters& step);
 
-  /// Appends the feature pairs the candidates represent to `batch`.
-  void gather(std::span<const FacePair> candidates, FeatureBatch& batch) const;
+  /// Appends the feature pairs the candidates represent to `scratch.batch`: in a step where stage 0 runs
+  /// (batched mode, a tester with a reach, and stage 0 paying: narrow_phase.cpp), those of the candidates it
+  /// keeps (`cull = false`: every candidate's, as the ownership tests record them).
+  void gather(std::span<const FacePair> candidates, NarrowScratch& scratch, NarrowCounters& c, bool cull = true) const;
   /// Appends a piece of the orphan set to an empty `batch`. Batched mode runs stage 1's coarse test here, on the
   /// set where it lies, and copies only the pairs it keeps (a tenth on rod-twist), counting them as run() would.
   void gather_orphans(std::span<const VertexFacePair> vf, std::span<const EdgeEdgePair> ee, FeatureBatch& batch,
@@ -79,6 +84,9 @@ class NarrowPhase {
   const FeatureBounds* bounds_ = nullptr;
   const Positions* x_t0_ = nullptr;
   const Positions* x_t1_ = nullptr;
+  bool triangle_stage_ = false;       ///< stage 0 runs in this step (begin_step)
+  double triangle_cull_rate_ = 0;     ///< its cull rate in the last step that ran it
+  std::uint64_t steps_ = 0;
 };
 
 }  // namespace ccdlab

@@ -6,6 +6,8 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "framework/narrow/point_loads-inl.h"
+
 HWY_BEFORE_NAMESPACE();
 namespace ccdlab {
 namespace HWY_NAMESPACE {
@@ -56,24 +58,12 @@ template <bool kVf>
 void StageRowsT(const std::int32_t* pairs, const std::int32_t* features, const double* x0, const double* x1,
                 std::size_t n, double* const* col) {
   std::size_t i = 0;
-#if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
-  const hn::Full256<double> d4;
-  const hn::Full128<double> d2;
-  using V = hn::Vec<decltype(d4)>;
-  struct Xyz {
-    V x, y, z;
-  };
-  // Four points' coordinates as three vectors: (x, y) and (y, z) of each, two 128-bit loads inside the Vec3,
-  // then interleaved and joined.
+#if CCDLAB_POINT_LOADS_4
+  const Points4Tag d4;
+  using Xyz = Points4;
   const auto load = [&](const double* x, const std::int32_t (&id)[4][4], int role) {
-    hn::Vec<decltype(d2)> xy[4], yz[4];
-    for (int k = 0; k < 4; ++k) {
-      const double* p = x + 3 * std::ptrdiff_t(id[k][role]);
-      xy[k] = hn::LoadU(d2, p), yz[k] = hn::LoadU(d2, p + 1);
-    }
-    return Xyz{hn::Combine(d4, hn::InterleaveLower(d2, xy[2], xy[3]), hn::InterleaveLower(d2, xy[0], xy[1])),
-               hn::Combine(d4, hn::InterleaveUpper(d2, xy[2], xy[3]), hn::InterleaveUpper(d2, xy[0], xy[1])),
-               hn::Combine(d4, hn::InterleaveUpper(d2, yz[2], yz[3]), hn::InterleaveUpper(d2, yz[0], yz[1]))};
+    const std::int32_t ids[4] = {id[0][role], id[1][role], id[2][role], id[3][role]};
+    return LoadPoints4(x, ids);
   };
   const auto store = [&](int c, const Xyz& p, const Xyz& q) {  // columns c, c + 1, c + 2 = p − q
     hn::StoreU(hn::Sub(p.x, q.x), d4, col[c] + i);

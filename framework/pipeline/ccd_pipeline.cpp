@@ -147,6 +147,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   // 3–4. Traversal, its candidates into the narrow phase as they are found; then the orphan set.
   traversal_.run(std::size_t(mesh_.num_faces()), narrow_driver_, result);
   narrow_driver_.test_orphans(strategies_.normal_cones ? &face_patch_ : nullptr, result);
+  narrow_.end_step(result.counters);
 
   // 5. One order, whatever the schedule.
   clock.serial("sort_contacts", nullptr, [&] { sort_contacts(result.contacts, sort_scratch_); });

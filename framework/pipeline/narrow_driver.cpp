@@ -22,10 +22,10 @@ void NarrowDriver::run_chunk(ThreadState& s, Gather&& gather) const {
   FeatureBatch& batch = s.scratch.batch;
   batch.clear();
   const auto t = Clock::now();
-  const std::uint64_t kdop_before = s.counters.kdop_ns;
-  gather(batch, s.counters);
-  // What a gather spent on stage 1 (gather_orphans) counts as stage 1, not twice.
-  s.counters.gather_ns += std::uint64_t(ms_since(t) * 1e6) - (s.counters.kdop_ns - kdop_before);
+  const std::uint64_t staged_before = s.counters.kdop_ns + s.counters.triangle_ns;
+  gather(s.scratch, s.counters);
+  // What a gather spent on stage 0 or stage 1 (gather_orphans) counts there, not twice.
+  s.counters.gather_ns += std::uint64_t(ms_since(t) * 1e6) - (s.counters.kdop_ns + s.counters.triangle_ns - staged_before);
   if (record_tested_) {
     s.tested_vf.insert(s.tested_vf.end(), batch.vf.begin(), batch.vf.end());
     s.tested_ee.insert(s.tested_ee.end(), batch.ee.begin(), batch.ee.end());
@@ -54,7 +54,7 @@ void NarrowDriver::in_parallel(std::size_t n, std::size_t chunk, const char* pha
   PhaseClock(result).parallel(phase, timing, [&](PhaseTrace& trace) {
     std::vector<PerThread<ThreadState>> local(threads_);
     parallel_chunks(n, chunk, threads_, trace, [&](std::size_t b, std::size_t e, int tid) {
-      run_chunk(local[tid].value, [&](FeatureBatch& batch, NarrowCounters& c) { gather(b, e, batch, c); });
+      run_chunk(local[tid].value, [&](NarrowScratch& scratch, NarrowCounters& c) { gather(b, e, scratch, c); });
     });
     trace.serial_ms += merge(local, result);
   });
@@ -67,7 +67,9 @@ void NarrowDriver::InTraversal::take(int tid, std::span<const FacePair> pairs) {
   const auto t = Clock::now();
   for (std::size_t b = 0; b < pairs.size(); b += kCandidateChunk) {
     const auto piece = pairs.subspan(b, std::min(kCandidateChunk, pairs.size() - b));
-    driver_.run_chunk(local_[tid].value, [&](FeatureBatch& batch, NarrowCounters&) { driver_.narrow_.gather(piece, batch); });
+    driver_.run_chunk(local_[tid].value, [&](NarrowScratch& scratch, NarrowCounters& c) {
+      driver_.narrow_.gather(piece, scratch, c, !driver_.record_tested_);
+    });
   }
   taken_[tid].value.pairs += pairs.size();
   taken_[tid].value.ms += ms_since(t);
@@ -88,8 +90,8 @@ double NarrowDriver::InTraversal::finish(StepResult& result) {
 void NarrowDriver::test_candidates(const CandidateList& pairs, StepResult& result) const {
   result.counters.candidate_pairs += pairs.size();
   in_parallel(pairs.size(), kCandidateChunk, "narrow", &result.timings.narrow_ms, result,
-              [&](std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters&) {
-                pairs.for_each_span(b, e, [&](std::span<const FacePair> s) { narrow_.gather(s, batch); });
+              [&](std::size_t b, std::size_t e, NarrowScratch& scratch, NarrowCounters& c) {
+                pairs.for_each_span(b, e, [&](std::span<const FacePair> s) { narrow_.gather(s, scratch, c, !record_tested_); });
               });
 }
 
@@ -102,7 +104,8 @@ void NarrowDriver::test_orphans(const std::vector<Index>* face_patch, StepResult
     return (*face_patch)[f] >= 0 && (*face_patch)[f] == (*face_patch)[g];
   };
   const std::size_t nvf = orphans.vf.size(), n = nvf + orphans.ee.size();
-  in_parallel(n, kOrphanChunk, "orphans", &result.timings.orphan_ms, result, [&](std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters& lc) {
+  in_parallel(n, kOrphanChunk, "orphans", &result.timings.orphan_ms, result, [&](std::size_t b, std::size_t e, NarrowScratch& scratch, NarrowCounters& lc) {
+    FeatureBatch& batch = scratch.batch;
     if (!face_patch) {  // the chunk as it is
       const std::span<const VertexFacePair> vf(orphans.vf.data() + std::min(b, nvf), orphans.vf.data() + std::min(e, nvf));
       const std::span<const EdgeEdgePair> ee(orphans.ee.data() + (std::max(b, nvf) - nvf), orphans.ee.data() + (std::max(e, nvf) - nvf));

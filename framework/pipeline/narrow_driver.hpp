@@ -57,11 +57,11 @@ class NarrowDriver {
   void test_orphans(const std::vector<Index>* face_patch, StepResult& result) const;
 
  private:
-  /// One chunk on one thread: `gather(batch, counters)` fills the batch, which is then culled and tested.
+  /// One chunk on one thread: `gather(scratch, counters)` fills the scratch's batch, which is then culled and tested.
   template <class Gather>
   void run_chunk(ThreadState& state, Gather&& gather) const;
   /// `n` items in chunks on every thread, as the phase `phase` (its ms added to `*timing`):
-  /// `gather(begin, end, batch, counters)` puts a chunk's feature pairs into the batch; the threads' results are
+  /// `gather(begin, end, scratch, counters)` puts a chunk's feature pairs into the scratch's batch; the threads' results are
   /// merged into `result`.
   template <class Gather>
   void in_parallel(std::size_t n, std::size_t chunk, const char* phase, double* timing, StepResult& result,

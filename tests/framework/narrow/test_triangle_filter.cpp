@@ -1,0 +1,145 @@
+// Stage 0 (triangle_filter.hpp): every SIMD target agrees with the plain version, a culled candidate never has a
+// feature pair the tester reports, the reach is honoured to within its rounding, and the pipeline's contacts do
+// not change when stage 0 runs (test_narrow_phase.cpp compares every mode with brute force).
+#include <gtest/gtest.h>
+
+#include <hwy/targets.h>
+
+#include <array>
+#include <random>
+#include <vector>
+
+#include "framework/narrow/triangle_filter.hpp"
+#include "framework/pipeline/ccd_pipeline.hpp"
+#include "strategies/registry.hpp"
+#include "strategies/testers/float_tester.hpp"
+#include "support/test_meshes.hpp"
+
+namespace ccdlab {
+namespace {
+
+/// Two random triangles per candidate in a thin slab, moving: many near contacts, many clear separations.
+/// Every 9th pair shares a vertex; every 13th has a degenerate (collinear) face.
+struct RandomPairs {
+  Positions x0, x1;
+  std::vector<Face> faces;
+  std::vector<FacePair> candidates;
+};
+RandomPairs random_pairs(int n, unsigned seed, double motion) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1), scale(-4, 2);
+  RandomPairs r;
+  for (int i = 0; i < n; ++i) {
+    const double s = std::pow(10.0, scale(rng));
+    const Index base = Index(r.x0.size());
+    for (int k = 0; k < 6; ++k) {
+      const Vec3 p = s * Vec3(u(rng), u(rng), 0.2 * u(rng));
+      r.x0.push_back(p);
+      r.x1.push_back(p + motion * s * Vec3(u(rng), u(rng), u(rng)));
+    }
+    if (i % 13 == 0) r.x0[base + 2] = 0.5 * (r.x0[base] + r.x0[base + 1]), r.x1[base + 2] = 0.5 * (r.x1[base] + r.x1[base + 1]);
+    Face f{base, base + 1, base + 2}, g{base + 3, base + 4, base + 5};
+    if (i % 9 == 0) g[1] = f[2];
+    r.faces.push_back(f);
+    r.faces.push_back(g);
+    r.candidates.push_back({2 * i, 2 * i + 1});
+  }
+  return r;
+}
+
+TEST(TriangleFilter, EverySimdTargetAgreesWithThePlainVersion) {
+  for (double motion : {0.0, 0.3}) {
+    const RandomPairs r = random_pairs(4099, 5, motion);  // not a multiple of any vector or block size
+    for (CullReach reach : {CullReach{0, 0}, CullReach{0, 2e-9}, CullReach{1e-3, 2e-9}}) {
+      std::vector<std::uint8_t> expect(r.candidates.size());
+      std::size_t culled = 0;
+      for (std::size_t i = 0; i < expect.size(); ++i) {
+        const FacePair& p = r.candidates[i];
+        culled += !(expect[i] = triangle_pair_keeps(r.faces[p.a], r.faces[p.b], r.x0.data(), r.x1.data(), reach));
+      }
+      EXPECT_GT(culled, expect.size() / 10);  // the comparison means something: both answers are common
+      EXPECT_LT(culled, expect.size() * 9 / 10);
+      const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+      ASSERT_FALSE(targets.empty());
+      for (std::int64_t t : targets) {
+        hwy::SetSupportedTargetsForTest(t);
+        std::vector<std::uint8_t> keep(expect.size(), 7);
+        triangle_filter(r.candidates, r.faces.data(), r.x0.data(), r.x1.data(), reach, keep.data());
+        EXPECT_EQ(keep, expect) << hwy::TargetName(t) << " motion " << motion << " reach " << reach.abs;
+      }
+      hwy::SetSupportedTargetsForTest(0);
+    }
+  }
+}
+
+TEST(TriangleFilter, NeverDropsACandidateWithAPairTheFloatTesterReports) {
+  for (double eta : {0.0, 0.02}) {
+    FloatTester tester(FloatTester::Params{eta});
+    const CullReach reach = *tester.cull_reach();
+    const RandomPairs r = random_pairs(20000, 17, 0.1);
+    int hits = 0, culled = 0;
+    for (const FacePair& p : r.candidates) {
+      const Face &f = r.faces[p.a], &g = r.faces[p.b];
+      bool hit = false;
+      for (int pass = 0; pass < 2; ++pass) {  // the VF pairs both ways
+        const Face &face = pass == 0 ? f : g, &other = pass == 0 ? g : f;
+        for (Index v : other)
+          hit |= tester.vertex_face({r.x0[v], r.x0[face[0]], r.x0[face[1]], r.x0[face[2]], r.x1[v], r.x1[face[0]],
+                                     r.x1[face[1]], r.x1[face[2]]}).hit;
+      }
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          const Index a0 = f[i], a1 = f[(i + 1) % 3], b0 = g[j], b1 = g[(j + 1) % 3];
+          hit |= tester.edge_edge({r.x0[a0], r.x0[a1], r.x0[b0], r.x0[b1], r.x1[a0], r.x1[a1], r.x1[b0], r.x1[b1]}).hit;
+        }
+      const bool keep = triangle_pair_keeps(f, g, r.x0.data(), r.x1.data(), reach);
+      hits += hit;
+      culled += !keep;
+      if (hit) ASSERT_TRUE(keep) << "eta " << eta << " candidate " << p.a / 2;
+    }
+    EXPECT_GT(hits, 1000);
+    EXPECT_GT(culled, 2000);
+  }
+}
+
+TEST(TriangleFilter, KeepsAPairWithinTheReachAndDropsOneJustBeyondIt) {
+  // Two parallel horizontal triangles, still, at distance d: kept at d = η(1 − 1e-6), dropped at η(1 + 1e-6).
+  const double eta = 1e-4;
+  const CullReach reach{eta, 0};
+  for (double factor : {1 - 1e-6, 1 + 1e-6}) {
+    const double d = eta * factor;
+    const Positions x = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.2, 0.2, d}, {1.2, 0.2, d}, {0.2, 1.2, d}};
+    const bool keep = triangle_pair_keeps({0, 1, 2}, {3, 4, 5}, x.data(), x.data(), reach);
+    EXPECT_EQ(keep, factor < 1) << "d = η·" << factor;
+  }
+}
+
+PipelineStrategies float_strategies(NarrowMode mode) {
+  PipelineStrategies s;
+  s.k = 18;
+  s.threads = 1;
+  s.narrow = {mode, RepresentativeRule::fixed};
+  s.builder = builder_registry().make({"median", {}});
+  s.scheduler = scheduler_registry().make({"sequential", scheduler_registry().find("sequential")->defaults()});
+  s.tester = tester_registry().make({"float", tester_registry().find("float")->defaults()});
+  return s;
+}
+
+TEST(TriangleFilter, RunsInThePipelineAndLeavesItsContactsAlone) {
+  MeshData g = test::grid(16, 16);
+  TriMesh mesh(Index(g.positions.size()), g.faces);
+  std::mt19937 rng(21);
+  Positions x0 = test::crumple(g.positions, rng, 0.02), x1 = x0;
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (Vec3& p : x1) p += 0.002 * Vec3(u(rng), u(rng), u(rng));
+  CcdPipeline batched(mesh, single_cloth_body(mesh), float_strategies(NarrowMode::batched));
+  CcdPipeline scalar(mesh, single_cloth_body(mesh), float_strategies(NarrowMode::scalar));
+  const StepResult b = batched.step(x0, x1), s = scalar.step(x0, x1);
+  EXPECT_GT(b.counters.triangle_culled, b.counters.candidate_pairs / 10);
+  EXPECT_EQ(s.counters.triangle_culled, 0u);  // the scalar mode has no stage 0
+  EXPECT_GT(b.contacts.size(), 5u);
+  EXPECT_EQ(contact_set_hash(b.contacts), contact_set_hash(s.contacts));
+}
+
+}  // namespace
+}  // namespace ccdlab
