@@ -104,6 +104,29 @@ HWY_INLINE hn::Mask<D> SideCulled(D d, const Xyz<V> (&pt)[6][2], int o, int b, i
   return hn::Or(hn::Gt(hn::Sub(lo, own_hi), gap), hn::Gt(hn::Sub(own_lo, hi), gap));
 }
 
+/// Stage 0 on one vector of candidates, `pt` their corners: keep[j] for the first `lanes`.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE void TriangleTest(D d, const Xyz<V> (&pt)[6][2], double abs_reach, double rel_reach, std::size_t lanes,
+                             std::uint8_t* keep) {
+  // The reach: L ≤ the twelve points' bounding-box extent in the 1-norm.
+  V lo[3] = {pt[0][0].x, pt[0][0].y, pt[0][0].z}, hi[3] = {lo[0], lo[1], lo[2]};
+  for (int corner = 0; corner < 6; ++corner)
+    for (int frame = 0; frame < 2; ++frame) {
+      const Xyz<V>& p = pt[corner][frame];
+      lo[0] = hn::Min(lo[0], p.x), lo[1] = hn::Min(lo[1], p.y), lo[2] = hn::Min(lo[2], p.z);
+      hi[0] = hn::Max(hi[0], p.x), hi[1] = hn::Max(hi[1], p.y), hi[2] = hn::Max(hi[2], p.z);
+    }
+  const V extent = hn::Add(hn::Add(hn::Sub(hi[0], lo[0]), hn::Sub(hi[1], lo[1])), hn::Sub(hi[2], lo[2]));
+  const V reach = hn::Add(hn::Set(d, abs_reach), hn::Mul(hn::Set(d, rel_reach), extent));
+  const V gap_factor = hn::Add(hn::Mul(reach, hn::Set(d, detail::kTriangleSlack)),
+                               hn::Mul(hn::Set(d, detail::kTriangleErrFactor), extent));
+  auto culled = SideCulled(d, pt, 0, 1, 2, 3, gap_factor);
+  if (!hn::AllTrue(d, culled)) culled = hn::Or(culled, SideCulled(d, pt, 3, 4, 5, 0, gap_factor));
+  std::uint8_t bits[8] = {};
+  hn::StoreMaskBits(d, culled, bits);
+  for (std::size_t j = 0; j < lanes; ++j) keep[j] = std::uint8_t(((bits[j / 8] >> (j % 8)) & 1) ^ 1);
+}
+
 void TriangleFilter(const std::int32_t* pairs, const std::int32_t* faces, const double* x0, const double* x1,
                     std::size_t n, double abs_reach, double rel_reach, std::uint8_t* keep) {
   const hn::ScalableTag<double> d;
@@ -123,24 +146,7 @@ void TriangleFilter(const std::int32_t* pairs, const std::int32_t* faces, const 
           const double* col = block + kStride * std::size_t(triangle_column(corner, frame, 0)) + i;
           pt[corner][frame] = {hn::Load(d, col), hn::Load(d, col + kStride), hn::Load(d, col + 2 * kStride)};
         }
-      // The reach: L ≤ the twelve points' bounding-box extent in the 1-norm.
-      V lo[3] = {pt[0][0].x, pt[0][0].y, pt[0][0].z}, hi[3] = {lo[0], lo[1], lo[2]};
-      for (int corner = 0; corner < 6; ++corner)
-        for (int frame = 0; frame < 2; ++frame) {
-          const Xyz<V>& p = pt[corner][frame];
-          lo[0] = hn::Min(lo[0], p.x), lo[1] = hn::Min(lo[1], p.y), lo[2] = hn::Min(lo[2], p.z);
-          hi[0] = hn::Max(hi[0], p.x), hi[1] = hn::Max(hi[1], p.y), hi[2] = hn::Max(hi[2], p.z);
-        }
-      const V extent = hn::Add(hn::Add(hn::Sub(hi[0], lo[0]), hn::Sub(hi[1], lo[1])), hn::Sub(hi[2], lo[2]));
-      const V reach = hn::Add(hn::Set(d, abs_reach), hn::Mul(hn::Set(d, rel_reach), extent));
-      const V gap_factor = hn::Add(hn::Mul(reach, hn::Set(d, detail::kTriangleSlack)),
-                                   hn::Mul(hn::Set(d, detail::kTriangleErrFactor), extent));
-      auto culled = SideCulled(d, pt, 0, 1, 2, 3, gap_factor);
-      if (!hn::AllTrue(d, culled)) culled = hn::Or(culled, SideCulled(d, pt, 3, 4, 5, 0, gap_factor));
-      std::uint8_t bits[8] = {};
-      hn::StoreMaskBits(d, culled, bits);
-      for (std::size_t j = 0; j < N && i + j < m; ++j)
-        keep[b + i + j] = std::uint8_t(((bits[j / 8] >> (j % 8)) & 1) ^ 1);
+      TriangleTest(d, pt, abs_reach, rel_reach, std::min(N, m - i), keep + b + i);
     }
   }
 }
