@@ -100,11 +100,12 @@ struct BvttStack {
 
 /// Depth-first traversal of the BVTT below `start`, appending candidate face pairs (ordered min, max for
 /// self passes; (face of a, face of b) otherwise) to `pairs` and adding the BV tests to `bv_tests`: over the
-/// 4-wide view when the view has one (in AVX-512 where the CPU has it). `stack` is scratch space.
+/// 4-wide view when the view has one (in AVX-512 or AVX2 where the CPU has it). `stack` is scratch space.
 template <class BV>
 void traverse_bvtt(const BvttView<BV>& v, BvttNode start, BvttStack& stack, FacePairs& pairs, std::uint64_t& bv_tests) {
 #if defined(CCDLAB_HAS_AVX512_WALK)
-  if (v.wide() && v.lane_pairs) return traverse_bvtt_lane_pairs(v, start, stack.lane_pairs, pairs, bv_tests);
+  if (v.wide() && v.lane_pairs != LanePairWalk::none)
+    return traverse_bvtt_lane_pairs(v.lane_pairs, v, start, stack.lane_pairs, pairs, bv_tests);
 #endif
   if (v.wide())
     traverse_bvtt_wide(v, start, stack.wide, pairs, bv_tests);

@@ -5,6 +5,7 @@
 #include "framework/hierarchy/bvh.hpp"
 #include "framework/hierarchy/wide_bvh.hpp"
 #include "framework/traversal/candidates.hpp"
+#include "framework/traversal/wide_overlap.hpp"
 
 namespace ccdlab {
 
@@ -31,9 +32,9 @@ struct BvttView {
   const WideLayout* wide_layout_b = nullptr;
   const WideBvs<BV>* wide_b = nullptr;
   [[nodiscard]] bool wide() const { return wide_a && wide_b; }
-  /// Walk the wide view in AVX-512 (traverse_bvtt_lane_pairs): set where the view is made, from
-  /// lane_pairs_walk_available(), so that a traversal call does not ask again.
-  bool lane_pairs = false;
+  /// The lane-pair walk of the wide view (traverse_bvtt_lane_pairs) to take, if any: set where the view is
+  /// made, from lane_pair_walk(), so that a traversal call does not ask again.
+  LanePairWalk lane_pairs = LanePairWalk::none;
   /// Appends the candidate of two overlapping leaves (ordered (min, max) in self passes; none when adjacent).
   /// Returns whether one was appended.
   bool emit_leaf_pair(const BvhNode& A, const BvhNode& B, FacePairs& out) const {

@@ -1,11 +1,13 @@
 #pragma once
 // The walks over the 4-wide view (bv.width: 4; framework/hierarchy/wide_bvh.hpp, docs/wide-bvh.md). Both make
 // the binary BVTT's candidates (see wide_bvh.hpp for why skipping levels keeps them):
-//   traverse_bvtt_lane_pairs — AVX-512: a pair node opens both sides' records and tests their 4 × 4 lane pairs
-//                              in one 16-lane compare per axis; no branch on the answers (compress-stores).
+//   traverse_bvtt_lane_pairs — AVX-512 or AVX2: a pair node opens both sides' records and tests their 4 × 4 lane
+//                              pairs in one 16-lane compare per axis (two 8-lane ones in AVX2); no branch on the
+//                              answers (compress-stores; table permutations in AVX2).
 //   traverse_bvtt_wide       — any x86-64 (SSE2): a pair node opens its larger side's record and tests its four
-//                              lanes against the other side; the walk for CPUs without AVX-512.
+//                              lanes against the other side; the walk for CPUs without AVX2.
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <vector>
@@ -217,8 +219,58 @@ struct LanePairAnswer {
   unsigned adjacent;  ///< overlapping leaf pairs of faces that share a vertex (self passes): never candidates
 };
 
+/// The lane pairs a visit of stack entry (ha, hb, wa, wb) tests: all used lanes of an inner side's record, a leaf
+/// side's home lane only. Sets the records it opens.
+template <class BV>
+inline unsigned entry_lane_pairs(const WideBounds<BV>* wide_a, const WideBounds<BV>* wide_b, Index ha, Index hb,
+                                 Index wa, Index wb, Index& ra, Index& rb) {
+  constexpr int W = WideLayout::kWidth;
+  ra = wa >= 0 ? wa : ha / W, rb = wb >= 0 ? wb : hb / W;
+  const unsigned row_lanes = wa >= 0 ? (1u << used_lanes(wide_a[ra])) - 1 : 1u << (ha % W);
+  const unsigned col_lanes = wb >= 0 ? (1u << used_lanes(wide_b[rb])) - 1 : 1u << (hb % W);
+  return lane_rows_mask(row_lanes) & (col_lanes * 0x1111u);
+}
+
+/// Asks for the records that stack entry `i` will open (the walks prefetch the entry two below the top).
+template <class BV>
+inline void prefetch_entry_records(const WideBounds<BV>* wide_a, const WideBounds<BV>* wide_b, const LanePairCursor& c,
+                                   std::size_t i) {
+  constexpr int W = WideLayout::kWidth;
+  const Index wa = c.col_wa[i], wb = c.col_wb[i];
+  const char* ra = reinterpret_cast<const char*>(wide_a + (wa >= 0 ? wa : c.col_ha[i] / W));
+  const char* rb = reinterpret_cast<const char*>(wide_b + (wb >= 0 ? wb : c.col_hb[i] / W));
+  for (std::size_t line = 0; line < sizeof(WideBounds<BV>); line += 64) __builtin_prefetch(ra + line), __builtin_prefetch(rb + line);
+}
+
+namespace detail {
+/// Lane permutations that pack the set lanes of a mask to the front, in order: per 8-bit mask over eight 32-bit
+/// lanes, and per 4-bit mask over four 64-bit lanes (as pairs of 32-bit lanes). The AVX2 visit's compress-stores.
+struct CompressTable {
+  alignas(32) std::array<std::array<std::int32_t, 8>, 256> lanes{};
+};
+constexpr CompressTable compress_32x8() {
+  CompressTable t{};
+  for (unsigned m = 0; m < 256; ++m)
+    for (unsigned j = 0, k = 0; j < 8; ++j)
+      if ((m >> j) & 1u) t.lanes[m][k++] = std::int32_t(j);
+  return t;
+}
+constexpr CompressTable compress_64x4() {
+  CompressTable t{};
+  for (unsigned m = 0; m < 16; ++m)
+    for (unsigned j = 0, k = 0; j < 4; ++j)
+      if ((m >> j) & 1u) t.lanes[m][k] = std::int32_t(2 * j), t.lanes[m][k + 1] = std::int32_t(2 * j + 1), k += 2;
+  return t;
+}
+inline constexpr CompressTable kCompress32x8 = compress_32x8();
+inline constexpr CompressTable kCompress64x4 = compress_64x4();
+}  // namespace detail
+
+// The lane-pair walk, compiled once per instruction set: each namespace has its visit_lane_pairs, and
+// lane_pair_walk-inl.hpp the walk that calls it, built with that set's function attribute.
+namespace lane_pair_avx512 {
 /// One pair visit of the lane-pair walk — THE kernel every scheduler's BVTT work goes through at width 4 (the
-/// walk below, the wide front in bvtt_wide_front.hpp): the `allowed` lane pairs of records A (index ra) and B
+/// walk below, the wide front in bvtt_wide_front.hpp), in AVX-512: the `allowed` lane pairs of records A (index ra) and B
 /// (rb) tested at once (overlapping_lane_pairs); overlapping leaf pairs written as candidates (adjacent ones
 /// dropped in self passes, the pair ordered (min, max)), the other overlapping lane pairs pushed as children with
 /// homes ra · 4 + i and rb · 4 + j (for a side restricted to one leaf lane, that is its home: it stays). No
@@ -280,118 +332,102 @@ CCDLAB_AVX512_TARGET __attribute__((always_inline)) inline LanePairAnswer visit_
   return {all, hit, down, adjacent};
 }
 
-/// The lane pairs a visit of stack entry (ha, hb, wa, wb) tests: all used lanes of an inner side's record, a leaf
-/// side's home lane only. Sets the records it opens.
-template <class BV>
-inline unsigned entry_lane_pairs(const WideBounds<BV>* wide_a, const WideBounds<BV>* wide_b, Index ha, Index hb,
-                                 Index wa, Index wb, Index& ra, Index& rb) {
-  constexpr int W = WideLayout::kWidth;
-  ra = wa >= 0 ? wa : ha / W, rb = wb >= 0 ? wb : hb / W;
-  const unsigned row_lanes = wa >= 0 ? (1u << used_lanes(wide_a[ra])) - 1 : 1u << (ha % W);
-  const unsigned col_lanes = wb >= 0 ? (1u << used_lanes(wide_b[rb])) - 1 : 1u << (hb % W);
-  return lane_rows_mask(row_lanes) & (col_lanes * 0x1111u);
-}
+#define CCDLAB_WALK_TARGET CCDLAB_AVX512_TARGET
+#include "framework/traversal/lane_pair_walk-inl.hpp"
+#undef CCDLAB_WALK_TARGET
+}  // namespace lane_pair_avx512
 
-/// Asks for the records that stack entry `i` will open (the walks prefetch the entry two below the top).
-template <class BV>
-inline void prefetch_entry_records(const WideBounds<BV>* wide_a, const WideBounds<BV>* wide_b, const LanePairCursor& c,
-                                   std::size_t i) {
-  constexpr int W = WideLayout::kWidth;
-  const Index wa = c.col_wa[i], wb = c.col_wb[i];
-  const char* ra = reinterpret_cast<const char*>(wide_a + (wa >= 0 ? wa : c.col_ha[i] / W));
-  const char* rb = reinterpret_cast<const char*>(wide_b + (wb >= 0 ? wb : c.col_hb[i] / W));
-  for (std::size_t line = 0; line < sizeof(WideBounds<BV>); line += 64) __builtin_prefetch(ra + line), __builtin_prefetch(rb + line);
+namespace lane_pair_avx2 {
+// The visit's helpers (functions, not lambdas: GCC does not give a lambda its enclosing function's target).
+#define CCDLAB_AVX2_INLINE CCDLAB_AVX2_TARGET __attribute__((always_inline)) inline
+/// Four lanes of p spread over the rows of 8 lane pairs: lane k of the result holds p[rows[k]].
+CCDLAB_AVX2_INLINE __m256i spread(const Index* p, __m256i rows) {
+  return _mm256_permutevar8x32_epi32(_mm256_castsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))), rows);
 }
+/// Four lanes of p repeated over the columns: lane k holds p[k % 4].
+CCDLAB_AVX2_INLINE __m256i repeat(const Index* p) {
+  return _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+/// The sign bits of eight 32-bit lanes.
+CCDLAB_AVX2_INLINE unsigned signs(__m256i v) { return unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(v))); }
+/// v's lanes packed by a row of a compress table (detail::CompressTable), stored whole at `out`.
+CCDLAB_AVX2_INLINE void store_packed(void* out, __m256i v, const std::array<std::int32_t, 8>& pick) {
+  _mm256_storeu_si256(static_cast<__m256i*>(out),
+                      _mm256_permutevar8x32_epi32(v, _mm256_load_si256(reinterpret_cast<const __m256i*>(pick.data()))));
+}
+#undef CCDLAB_AVX2_INLINE
 
-/// Depth-first traversal over the 4-wide view in AVX-512 (call only where lane_pairs_walk_available()). A pair
-/// node opens both sides at once: an inner side's record, or, for a leaf, the record that holds it (its home)
-/// restricted to that lane. One overlapping_lane_pairs gives the 16 lane pairs' answers; the pairs of two leaves
-/// are written as candidates (adjacency tested in SIMD on the lanes' vertex ids, WideLayout::LaneIds::vert) and the
-/// others pushed, each with one compress per 16 lanes — no branch on any answer, which is what made the other
-/// walks pay ~11 ns per BV test (docs/wide-bvh.md). Self nodes open into (L, L), (R, R), (L, R) as in the binary
-/// BVTT, so normal-cone skips apply unchanged; (L, R) is pushed untested, since its visit tests L's lanes against
-/// R's anyway (a leaf pair under L × R overlaps only if L and R do). Same candidates as the binary walk
-/// (wide_bvh.hpp), in another order; a BV test is one lane pair of the restricted records.
+/// The AVX2 pair visit: what the AVX-512 one does, in two 8-lane halves (rows 0–1 and 2–3), the compress-stores
+/// as one lane permutation from a table per 8-bit (or, for the 64-bit candidates, 4-bit) mask and a full store.
+/// Same candidates and pushes, in the same order.
 template <class BV>
-CCDLAB_AVX512_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode start, LanePairStack& stack,
-                                                   FacePairs& pairs, std::uint64_t& bv_tests_out) {
+CCDLAB_AVX2_TARGET __attribute__((always_inline)) inline LanePairAnswer visit_lane_pairs(
+    const WideBounds<BV>& A, const WideBounds<BV>& B, Index ra, Index rb, unsigned allowed, bool self,
+    LanePairCursor& cur) {
   constexpr int W = WideLayout::kWidth;
-  const BvhNode* const na = v.bvh_a->nodes.data();
-  const BV* const bva = v.bv_a->data();
-  const BV* const bvb = v.bv_b->data();
-  const Index* const slot_a = v.wide_layout_a->slot.data();
-  const Index* const slot_b = v.wide_layout_b->slot.data();
-  const Index* const home_a = v.wide_layout_a->home.data();
-  const Index* const home_b = v.wide_layout_b->home.data();
-  const WideBounds<BV>* const wide_a = v.wide_a->data();
-  const WideBounds<BV>* const wide_b = v.wide_b->data();
-  const Index* const skip_root = v.skip_root;
-  const bool self = v.self;
-  std::uint64_t bv_tests = 0;
-  // A visit pushes at most 16 pair nodes, or 2 for a self node; room is checked before each visit.
-  LanePairCursor cur{nullptr, nullptr, nullptr, nullptr, 0, nullptr};
-  const auto make_room = [&](std::size_t n) {
-    stack.reserve(n, cur.top);
-    cur.col_ha = stack.column(0), cur.col_hb = stack.column(1), cur.col_wa = stack.column(2), cur.col_wb = stack.column(3);
-  };
-  make_room(64);
-  const auto push = [&](Index ha, Index hb, Index wa, Index wb) {
-    cur.col_ha[cur.top] = ha, cur.col_hb[cur.top] = hb, cur.col_wa[cur.top] = wa, cur.col_wb[cur.top] = wb;
-    ++cur.top;
-  };
-  // Candidates: written in place, 16 at a time (full-width stores), into room made ahead, trimmed at the end.
-  std::size_t emitted = pairs.size();
-  pairs.resize(std::max<std::size_t>(pairs.capacity(), emitted + 1024));
-  cur.pout = pairs.data() + emitted;
-  FacePair* pend = pairs.data() + pairs.size();
-  // The visited node: each side's home and slot (as on the stack).
-  Index ha = start.a, hb = start.b, wa = -1, wb = -1;
-  bool visit = true;
-  if (!(self && start.a == start.b)) {
-    ++bv_tests;
-    visit = bva[start.a].overlaps(bvb[start.b]);
-    ha = home_a[start.a], hb = home_b[start.b], wa = slot_a[start.a], wb = slot_b[start.b];
-  }
-  for (;;) {
-    if (visit) {
-      if (cur.top + 2 * W * W > stack.cap()) [[unlikely]] make_room(cur.top + 2 * W * W);
-      if (self && ha == hb) {  // a self node (a pair node's homes differ)
-        const BvhNode& A = na[ha];
-        if (!A.is_leaf() && !(skip_root && skip_root[ha] >= 0)) {
-          // Testing L against R first kept out 4.4K of rod-twist's 80K (L, R) and read both from the binary
-          // array, away from the records: without it the walk is 1.08x faster (BM_TraverseWidth/4, docs/wide-bvh.md).
-          push(home_a[A.left], home_a[A.right], slot_a[A.left], slot_a[A.right]);
-          push(A.right, A.right, -1, -1);
-          ha = hb = A.left;
-          continue;
+  const __m256i rows[2] = {_mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1), _mm256_setr_epi32(2, 2, 2, 2, 3, 3, 3, 3)};
+  const __m256i cols = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3);
+  const unsigned all = overlapping_lane_pairs_avx2(A, B);
+  const unsigned hit = all & allowed;
+  const __m256i sa[2] = {spread(A.lanes.slot.data(), rows[0]), spread(A.lanes.slot.data(), rows[1])};
+  const __m256i sb = repeat(B.lanes.slot.data());
+  const unsigned leaves = (signs(sa[0]) | signs(sa[1]) << 8) & (signs(sb) * 0x101u);
+  unsigned emit = hit & leaves;
+  const unsigned down = hit & ~leaves;
+  unsigned adjacent = 0;
+  if (emit) {
+    const __m256i ones = _mm256_set1_epi32(-1);
+    const __m256i fb = _mm256_xor_si256(sb, ones);  // ~slot = face
+    __m256i first[2] = {_mm256_xor_si256(sa[0], ones), _mm256_xor_si256(sa[1], ones)}, second[2] = {fb, fb};
+    if (self) {  // TriMesh::faces_adjacent on 16 lane pairs; candidates ordered (min, max)
+      unsigned shared = 0;
+      for (int p = 0; p < 3; ++p)
+        for (int h = 0; h < 2; ++h) {
+          const __m256i va = spread(A.lanes.vert[p].data(), rows[h]);
+          for (int q = 0; q < 3; ++q)
+            shared |= signs(_mm256_cmpeq_epi32(va, repeat(B.lanes.vert[q].data()))) << (8 * h);
         }
-      } else {
-        Index ra, rb;
-        const unsigned allowed = entry_lane_pairs(wide_a, wide_b, ha, hb, wa, wb, ra, rb);
-        bv_tests += unsigned(std::popcount(allowed));
-        if (cur.pout + W * W > pend) [[unlikely]] {
-          emitted = std::size_t(cur.pout - pairs.data());
-          pairs.resize(2 * pairs.size() + W * W);
-          cur.pout = pairs.data() + emitted;
-          pend = pairs.data() + pairs.size();
-        }
-        visit_lane_pairs(wide_a[ra], wide_b[rb], ra, rb, allowed, self, cur);
+      adjacent = emit & shared;
+      emit &= ~shared;
+      for (int h = 0; h < 2; ++h) {
+        const __m256i lo = _mm256_min_epi32(first[h], second[h]), hi = _mm256_max_epi32(first[h], second[h]);
+        first[h] = lo, second[h] = hi;
       }
     }
-    if (cur.top == 0) break;
-    --cur.top;
-    ha = cur.col_ha[cur.top], hb = cur.col_hb[cur.top], wa = cur.col_wa[cur.top], wb = cur.col_wb[cur.top];
-    // Ask for the records of the node two below the top: visited next but one when this visit pushes nothing
-    // (the usual case near the leaves), or after this visit's pushes, still soon. The first read of a record was
-    // the walk's hottest instruction (a miss); one below the top came too late to help as much
-    // (BM_TraverseWidth/4, rod-twist: 1.08x with two below, 1.04x with one below, docs/wide-bvh.md). A self
-    // node's entry holds its node id, not a home: id / W is then some record (ids < 2 · records), a useless but
-    // harmless prefetch.
-    if (cur.top >= 2) prefetch_entry_records(wide_a, wide_b, cur, cur.top - 2);
-    visit = true;
+    for (int g = 0; g < 4; ++g) {  // four lane pairs at a time, as 64-bit (first, second) = FacePair
+      const __m128i f = g % 2 ? _mm256_extracti128_si256(first[g / 2], 1) : _mm256_castsi256_si128(first[g / 2]);
+      const __m128i s = g % 2 ? _mm256_extracti128_si256(second[g / 2], 1) : _mm256_castsi256_si128(second[g / 2]);
+      const __m256i pair = _mm256_or_si256(_mm256_cvtepu32_epi64(f), _mm256_slli_epi64(_mm256_cvtepu32_epi64(s), 32));
+      const unsigned m = (emit >> (4 * g)) & 0xFu;
+      store_packed(cur.pout, pair, detail::kCompress64x4.lanes[m]);
+      cur.pout += std::popcount(m);
+    }
   }
-  pairs.resize(std::size_t(cur.pout - pairs.data()));
-  bv_tests_out += bv_tests;
+  if (down) {
+    const __m256i hb = _mm256_add_epi32(_mm256_set1_epi32(rb * W), cols);
+    for (int h = 0; h < 2; ++h) {
+      const unsigned m = (down >> (8 * h)) & 0xFFu;
+      const auto& pick = detail::kCompress32x8.lanes[m];
+      const __m256i ha = _mm256_add_epi32(_mm256_set1_epi32(ra * W), rows[h]);
+      store_packed(cur.col_ha + cur.top, ha, pick), store_packed(cur.col_hb + cur.top, hb, pick);
+      store_packed(cur.col_wa + cur.top, sa[h], pick), store_packed(cur.col_wb + cur.top, sb, pick);
+      cur.top += std::size_t(std::popcount(m));
+    }
+  }
+  return {all, hit, down, adjacent};
+}
+
+#define CCDLAB_WALK_TARGET CCDLAB_AVX2_TARGET
+#include "framework/traversal/lane_pair_walk-inl.hpp"
+#undef CCDLAB_WALK_TARGET
+}  // namespace lane_pair_avx2
+
+/// The lane-pair walk of `walk` (not none).
+template <class BV>
+void traverse_bvtt_lane_pairs(LanePairWalk walk, const BvttView<BV>& v, BvttNode start, LanePairStack& stack,
+                              FacePairs& pairs, std::uint64_t& bv_tests) {
+  if (walk == LanePairWalk::avx512) lane_pair_avx512::traverse_bvtt_lane_pairs(v, start, stack, pairs, bv_tests);
+  else lane_pair_avx2::traverse_bvtt_lane_pairs(v, start, stack, pairs, bv_tests);
 }
 #endif
 

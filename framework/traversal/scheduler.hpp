@@ -59,7 +59,7 @@ void with_bvtt_view(const TraversalPass& pass, F&& f) {
           view.wide_a = &std::get<WideBvs<BV>>(*pass.wide_a);
           view.wide_layout_b = pass.wide_layout_b;
           view.wide_b = &std::get<WideBvs<BV>>(*pass.wide_b);
-          view.lane_pairs = lane_pairs_walk_available();
+          view.lane_pairs = lane_pair_walk();
         }
         f(view);
       },

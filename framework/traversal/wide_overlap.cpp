@@ -1,4 +1,4 @@
-// lane_pairs_walk_available (wide_overlap.hpp): Highway compiles this file once per SIMD target and dispatches
+// lane_pair_walk (wide_overlap.hpp): Highway compiles this file once per SIMD target and dispatches
 // to the chosen one, which follows CCDLAB_SIMD (limit_simd_target) without asking the CPU again.
 #include "framework/traversal/wide_overlap.hpp"
 
@@ -11,12 +11,12 @@ HWY_BEFORE_NAMESPACE();
 namespace ccdlab {
 namespace HWY_NAMESPACE {
 
-/// AVX3 and the better x86 targets (AVX3_DL: lower bits are better) have what the walk needs.
-bool HasAvx512Walk() {
+/// AVX3 and the better x86 targets (lower bits are better) have what the AVX-512 walk needs; AVX2 the other.
+LanePairWalk BestWalk() {
 #if defined(CCDLAB_HAS_AVX512_WALK) && HWY_ARCH_X86
-  return HWY_TARGET <= HWY_AVX3;
+  return HWY_TARGET <= HWY_AVX3 ? LanePairWalk::avx512 : HWY_TARGET <= HWY_AVX2 ? LanePairWalk::avx2 : LanePairWalk::none;
 #else
-  return false;
+  return LanePairWalk::none;
 #endif
 }
 
@@ -26,9 +26,9 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 namespace ccdlab {
-HWY_EXPORT(HasAvx512Walk);
+HWY_EXPORT(BestWalk);
 
-bool lane_pairs_walk_available() { return HWY_DYNAMIC_DISPATCH(HasAvx512Walk)(); }
+LanePairWalk lane_pair_walk() { return HWY_DYNAMIC_DISPATCH(BestWalk)(); }
 
 }  // namespace ccdlab
 #endif  // HWY_ONCE

@@ -5,9 +5,10 @@
 //                            this needs no run-time dispatch and stays inline in the traversal loop (Highway's
 //                            static target on a baseline x86-64 build is its scalar one, one lane).
 //   overlapping_lane_pairs — the 4 × 4 lane pairs of two records: one 16-float compare per axis and side, in
-//                            AVX-512 (16 floats are one register). Compiled for AVX-512 by a function attribute and
-//                            called only where the CPU has it (lane_pairs_walk_available), so the default build still
-//                            runs on any x86-64 CPU.
+//                            AVX-512 (16 floats are one register); overlapping_lane_pairs_avx2 the same in two
+//                            8-float halves. Compiled for their instruction sets by function attributes and called
+//                            only where the CPU has them (lane_pair_walk), so the default build still runs on any
+//                            x86-64 CPU.
 // The plain loops are the reference the tests compare with, and what other CPUs take.
 #include <cstdint>
 #if defined(__SSE2__)
@@ -18,6 +19,9 @@
 /// What the AVX-512 code is compiled for: Highway's AVX3 target (AVX-512 F/VL/DQ/BW and the AVX2 set below it).
 #define CCDLAB_AVX512_TARGET \
   __attribute__((target("avx2,bmi,bmi2,lzcnt,popcnt,avx512f,avx512vl,avx512dq,avx512bw")))
+/// What the AVX2 code is compiled for: Highway's AVX2 target.
+#define CCDLAB_AVX2_TARGET __attribute__((target("avx2,bmi,bmi2,lzcnt,popcnt,fma,f16c")))
+/// The lane-pair walks (AVX-512 and AVX2) compile here.
 #define CCDLAB_HAS_AVX512_WALK 1
 #endif
 
@@ -47,9 +51,11 @@ inline unsigned overlapping_lane_pairs_plain(const WideBounds<BV>& a, const Wide
   return mask;
 }
 
-/// Whether traverse_bvtt picks the AVX-512 lane-pair walk: this CPU has AVX-512 and CCDLAB_SIMD (Highway's
-/// supported targets) allows it. Cheap (Highway's chosen target, no CPUID): asked once per traversal call.
-bool lane_pairs_walk_available();
+/// Which lane-pair walk traverse_bvtt and the wide front take: the best of AVX-512 and AVX2 that this CPU has and
+/// CCDLAB_SIMD (Highway's supported targets) allows, or none (the SSE2 walk, traverse_bvtt_wide, and the binary
+/// front). Cheap (Highway's chosen target, no CPUID): asked once per traversal call.
+enum class LanePairWalk : std::uint8_t { none, avx2, avx512 };
+LanePairWalk lane_pair_walk();
 
 /// The lanes' size measures (KDop::size_measure: the extents along the first three axes, summed in that order).
 template <class BV>
@@ -97,6 +103,26 @@ CCDLAB_AVX512_TARGET __attribute__((always_inline)) inline unsigned overlapping_
     apart |= _mm512_cmp_ps_mask(alo, bhi, _CMP_GT_OQ) | _mm512_cmp_ps_mask(blo, ahi, _CMP_GT_OQ);
   }
   return unsigned(~apart) & 0xFFFFu;
+}
+
+/// overlapping_lane_pairs in AVX2: the same 16 lanes as two 8-float halves (rows 0–1 and 2–3), same answer.
+template <class BV>
+CCDLAB_AVX2_TARGET __attribute__((always_inline)) inline unsigned overlapping_lane_pairs_avx2(const WideBounds<BV>& a,
+                                                                                              const WideBounds<BV>& b) {
+  const __m256i rows01 = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1), rows23 = _mm256_setr_epi32(2, 2, 2, 2, 3, 3, 3, 3);
+  __m256 apart01 = _mm256_setzero_ps(), apart23 = _mm256_setzero_ps();
+  for (int i = 0; i < BV::num_axes; ++i) {
+    const __m256 alo = _mm256_castps128_ps256(_mm_load_ps(a.lo[i])), ahi = _mm256_castps128_ps256(_mm_load_ps(a.hi[i]));
+    const __m256 blo = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(b.lo[i]));
+    const __m256 bhi = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(b.hi[i]));
+    // (No lambda: GCC does not give a lambda its enclosing function's target.)
+    apart01 = _mm256_or_ps(apart01, _mm256_or_ps(_mm256_cmp_ps(_mm256_permutevar8x32_ps(alo, rows01), bhi, _CMP_GT_OQ),
+                                                 _mm256_cmp_ps(blo, _mm256_permutevar8x32_ps(ahi, rows01), _CMP_GT_OQ)));
+    apart23 = _mm256_or_ps(apart23, _mm256_or_ps(_mm256_cmp_ps(_mm256_permutevar8x32_ps(alo, rows23), bhi, _CMP_GT_OQ),
+                                                 _mm256_cmp_ps(blo, _mm256_permutevar8x32_ps(ahi, rows23), _CMP_GT_OQ)));
+  }
+  const unsigned apart = unsigned(_mm256_movemask_ps(apart01)) | unsigned(_mm256_movemask_ps(apart23)) << 8;
+  return ~apart & 0xFFFFu;
 }
 #endif
 

@@ -133,7 +133,7 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
   with_bvtt_view(pass, [&](const auto& view) {
     const auto t_serial = Clock::now();
 #if defined(CCDLAB_HAS_AVX512_WALK)
-    const bool wide = view.wide() && view.lane_pairs;
+    const bool wide = view.wide() && view.lane_pairs != LanePairWalk::none;
 #else
     const bool wide = false;
 #endif
@@ -175,7 +175,8 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
       run(pass, front, front.wide, rebuild, chunk, out, trace,
           [&](const WideFrontGroup* b, const WideFrontGroup* e, WideFrontPiece& next, std::size_t piece_begin,
               FacePairs& pairs, FrontLocal& l) {
-            process_wide_front(view, b, e, prune, next, piece_begin, pairs, l.stack.lane_pairs, l.counters);
+            process_wide_front(view.lane_pairs, view, b, e, prune, next, piece_begin, pairs, l.stack.lane_pairs,
+                               l.counters);
           });
       return;
     }

@@ -112,6 +112,10 @@ template <class BV>
 CCDLAB_AVX512_TARGET unsigned lane_pairs_avx512_for_test(const WideBounds<BV>& a, const WideBounds<BV>& b) {
   return overlapping_lane_pairs(a, b);
 }
+template <class BV>
+CCDLAB_AVX2_TARGET unsigned lane_pairs_avx2_for_test(const WideBounds<BV>& a, const WideBounds<BV>& b) {
+  return overlapping_lane_pairs_avx2(a, b);
+}
 #endif
 
 template <int K>
@@ -167,8 +171,11 @@ void check_lane_test(std::mt19937& rng) {
         EXPECT_EQ(bool(pairs >> (4 * i + j) & 1u), i < used && lane[i].overlaps(other_lane[j]))
             << "K=" << K << " trial " << trial << " lane pair " << i << ", " << j;
 #if defined(CCDLAB_HAS_AVX512_WALK)
-    if (lane_pairs_walk_available()) {
+    if (lane_pair_walk() == LanePairWalk::avx512) {
       EXPECT_EQ(lane_pairs_avx512_for_test(w, other), pairs) << "AVX-512 and plain lane-pair tests differ";
+    }
+    if (lane_pair_walk() != LanePairWalk::none) {
+      EXPECT_EQ(lane_pairs_avx2_for_test(w, other), pairs) << "AVX2 and plain lane-pair tests differ";
     }
 #endif
     alignas(16) float size[4], plain[4];
@@ -191,19 +198,24 @@ TEST(WideBvh, SimdLaneTestAgreesWithKDopOverlaps) {
   check_lane_test<26>(rng);
 }
 
-TEST(WideBvh, TheLanePairWalkRunsWhereTheCpuHasAvx512AndCcdlabSimdAllowsIt) {
+TEST(WideBvh, TheLanePairWalkFollowsTheCpuAndCcdlabSimd) {
 #if defined(CCDLAB_HAS_AVX512_WALK)
-  const bool avx512 = (hwy::SupportedTargets() & (HWY_AVX3 | HWY_AVX3_DL)) != 0;
+  const auto targets = hwy::SupportedTargets();
+  const LanePairWalk best = (targets & (HWY_AVX3 | HWY_AVX3_DL)) ? LanePairWalk::avx512
+                            : (targets & HWY_AVX2)               ? LanePairWalk::avx2
+                                                                 : LanePairWalk::none;
 #else
-  const bool avx512 = false;  // not compiled in (not x86-64, or not GCC/Clang)
+  const LanePairWalk best = LanePairWalk::none;  // not compiled in (not x86-64, or not GCC/Clang)
 #endif
-  EXPECT_EQ(lane_pairs_walk_available(), avx512);
+  EXPECT_EQ(lane_pair_walk(), best);
   if (hwy::SupportedTargets() & HWY_AVX2) {
     limit_simd_target("avx2");
-    EXPECT_FALSE(lane_pairs_walk_available()) << "CCDLAB_SIMD=avx2 takes the SSE2 walk";
+    EXPECT_EQ(lane_pair_walk(), LanePairWalk::avx2) << "CCDLAB_SIMD=avx2 takes the AVX2 walk";
+    limit_simd_target("sse4");
+    EXPECT_EQ(lane_pair_walk(), LanePairWalk::none) << "CCDLAB_SIMD=sse4 takes the SSE2 walk";
     hwy::SetSupportedTargetsForTest(0);
   }
-  EXPECT_EQ(lane_pairs_walk_available(), avx512);
+  EXPECT_EQ(lane_pair_walk(), best);
 }
 
 }  // namespace

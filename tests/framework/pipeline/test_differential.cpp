@@ -19,8 +19,8 @@ struct Case {
   int k;
   std::string builder;
   int width = 2;  ///< bv.width: the binary BVTT or the 4-wide view (same candidates)
-  /// CCDLAB_SIMD for the case, or "" for the CPU's best: "avx2" makes width 4 take the SSE2 walk
-  /// (traverse_bvtt_wide) instead of the AVX-512 one (traverse_bvtt_lane_pairs) on a CPU that has AVX-512.
+  /// CCDLAB_SIMD for the case, or "" for the CPU's best: "avx2" makes width 4 take the AVX2 lane-pair walk, "sse4"
+  /// the SSE2 walk (traverse_bvtt_wide), instead of the AVX-512 one on a CPU that has AVX-512.
   std::string simd = "";
 };
 
@@ -130,7 +130,8 @@ INSTANTIATE_TEST_SUITE_P(EveryKAndBuilder, Differential,
                                            Case{6, "sah"}, Case{14, "sah"}, Case{18, "sah"}, Case{26, "sah"},
                                            Case{6, "median", 4}, Case{14, "sah", 4}, Case{18, "median", 4},
                                            Case{26, "sah", 4}, Case{6, "sah", 4, "avx2"}, Case{18, "median", 4, "avx2"},
-                                           Case{26, "median", 4, "avx2"}),
+                                           Case{26, "median", 4, "avx2"}, Case{6, "sah", 4, "sse4"},
+                                           Case{18, "median", 4, "sse4"}, Case{26, "median", 4, "sse4"}),
                          [](const auto& info) {
                            return info.param.builder + "_k" + std::to_string(info.param.k) + "_w" +
                                   std::to_string(info.param.width) + (info.param.simd.empty() ? "" : "_") +
