@@ -2,7 +2,8 @@
 // (the step with the most candidates of the default run). Run: build/bin/ccdlab_microbench
 //   --benchmark_filter=Traverse   (or TraverseWidth, SweptBv, Refit, Step, FloatTester, Tester)
 // Google Benchmark interleaves nothing by itself: compare ratios within one invocation. CCDLAB_SIMD=avx2 (as for
-// the command line, docs/config.md) limits the kernels, e.g. to time width 4's SSE2 walk on an AVX-512 CPU.
+// the command line, docs/config.md) limits the kernels, e.g. to time width 4's AVX2 walk on an AVX-512 CPU
+// (CCDLAB_SIMD=sse4: the SSE2 walk).
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>

@@ -103,7 +103,7 @@ struct BvttStack {
 /// 4-wide view when the view has one (in AVX-512 or AVX2 where the CPU has it). `stack` is scratch space.
 template <class BV>
 void traverse_bvtt(const BvttView<BV>& v, BvttNode start, BvttStack& stack, FacePairs& pairs, std::uint64_t& bv_tests) {
-#if defined(CCDLAB_HAS_AVX512_WALK)
+#if defined(CCDLAB_HAS_LANE_PAIR_WALKS)
   if (v.wide() && v.lane_pairs != LanePairWalk::none)
     return traverse_bvtt_lane_pairs(v.lane_pairs, v, start, stack.lane_pairs, pairs, bv_tests);
 #endif

@@ -200,7 +200,7 @@ class LanePairStack {
   std::size_t cap_ = 0;
 };
 
-#if defined(CCDLAB_HAS_AVX512_WALK)
+#if defined(CCDLAB_HAS_LANE_PAIR_WALKS)
 /// The lane-pair walk's stack columns and candidate cursor, as one visit writes them.
 struct LanePairCursor {
   Index* col_ha;

@@ -80,7 +80,7 @@ WideFrontPiece wide_front_seeds(const BvhTopology& a, const WideLayout& la, cons
 void append_wide_front_nodes(const WideLayout& la, const WideLayout& lb, const WideFrontGroup* begin,
                              const WideFrontGroup* end, std::vector<FrontNode>& out);
 
-#if defined(CCDLAB_HAS_AVX512_WALK)
+#if defined(CCDLAB_HAS_LANE_PAIR_WALKS)
 namespace lane_pair_avx512 {
 #define CCDLAB_WALK_TARGET CCDLAB_AVX512_TARGET
 #include "framework/traversal/wide_front_walk-inl.hpp"

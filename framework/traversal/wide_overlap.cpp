@@ -13,7 +13,7 @@ namespace HWY_NAMESPACE {
 
 /// AVX3 and the better x86 targets (lower bits are better) have what the AVX-512 walk needs; AVX2 the other.
 LanePairWalk BestWalk() {
-#if defined(CCDLAB_HAS_AVX512_WALK) && HWY_ARCH_X86
+#if defined(CCDLAB_HAS_LANE_PAIR_WALKS) && HWY_ARCH_X86
   return HWY_TARGET <= HWY_AVX3 ? LanePairWalk::avx512 : HWY_TARGET <= HWY_AVX2 ? LanePairWalk::avx2 : LanePairWalk::none;
 #else
   return LanePairWalk::none;

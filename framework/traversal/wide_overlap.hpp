@@ -22,7 +22,7 @@
 /// What the AVX2 code is compiled for: Highway's AVX2 target.
 #define CCDLAB_AVX2_TARGET __attribute__((target("avx2,bmi,bmi2,lzcnt,popcnt,fma,f16c")))
 /// The lane-pair walks (AVX-512 and AVX2) compile here.
-#define CCDLAB_HAS_AVX512_WALK 1
+#define CCDLAB_HAS_LANE_PAIR_WALKS 1
 #endif
 
 #include "framework/hierarchy/wide_bvh.hpp"
@@ -84,7 +84,7 @@ inline void lane_sizes(const WideBounds<BV>& w, float* out) {
 }
 #endif
 
-#if defined(CCDLAB_HAS_AVX512_WALK)
+#if defined(CCDLAB_HAS_LANE_PAIR_WALKS)
 /// Lane i of a, repeated four times, for i = 0..3: the rows of the 4 × 4 lane pairs (lane 4i + j holds a's i).
 #define CCDLAB_LANE_ROWS _mm512_set_epi32(3, 3, 3, 3, 2, 2, 2, 2, 1, 1, 1, 1, 0, 0, 0, 0)
 

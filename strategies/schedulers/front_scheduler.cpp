@@ -132,7 +132,7 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
   PhaseTrace trace{"traverse", Distribution::dynamic, 0, {}, {}};
   with_bvtt_view(pass, [&](const auto& view) {
     const auto t_serial = Clock::now();
-#if defined(CCDLAB_HAS_AVX512_WALK)
+#if defined(CCDLAB_HAS_LANE_PAIR_WALKS)
     const bool wide = view.wide() && view.lane_pairs != LanePairWalk::none;
 #else
     const bool wide = false;
@@ -168,7 +168,7 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
       const std::size_t seeds = wide ? front.wide.pieces[0].end : front.binary.pieces[0].end;
       chunk = std::clamp<std::size_t>(seeds / kRebuildTasks, 1, chunk);
     }
-#if defined(CCDLAB_HAS_AVX512_WALK)
+#if defined(CCDLAB_HAS_LANE_PAIR_WALKS)
     if (wide) {
       // Seeds are split for balance: not merged back in the step that made them.
       const bool prune = params_.prune && !rebuild;

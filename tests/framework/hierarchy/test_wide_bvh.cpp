@@ -107,7 +107,7 @@ TEST(WideBvh, ASingleLeafTreeHasATopRecord) {
   EXPECT_EQ(w1.lanes[0].slot[0], ~bvh.nodes[1].face);
 }
 
-#if defined(CCDLAB_HAS_AVX512_WALK)
+#if defined(CCDLAB_HAS_LANE_PAIR_WALKS)
 template <class BV>
 CCDLAB_AVX512_TARGET unsigned lane_pairs_avx512_for_test(const WideBounds<BV>& a, const WideBounds<BV>& b) {
   return overlapping_lane_pairs(a, b);
@@ -170,7 +170,7 @@ void check_lane_test(std::mt19937& rng) {
       for (int j = 0; j < 4; ++j)
         EXPECT_EQ(bool(pairs >> (4 * i + j) & 1u), i < used && lane[i].overlaps(other_lane[j]))
             << "K=" << K << " trial " << trial << " lane pair " << i << ", " << j;
-#if defined(CCDLAB_HAS_AVX512_WALK)
+#if defined(CCDLAB_HAS_LANE_PAIR_WALKS)
     if (lane_pair_walk() == LanePairWalk::avx512) {
       EXPECT_EQ(lane_pairs_avx512_for_test(w, other), pairs) << "AVX-512 and plain lane-pair tests differ";
     }
@@ -199,7 +199,7 @@ TEST(WideBvh, SimdLaneTestAgreesWithKDopOverlaps) {
 }
 
 TEST(WideBvh, TheLanePairWalkFollowsTheCpuAndCcdlabSimd) {
-#if defined(CCDLAB_HAS_AVX512_WALK)
+#if defined(CCDLAB_HAS_LANE_PAIR_WALKS)
   const auto targets = hwy::SupportedTargets();
   const LanePairWalk best = (targets & (HWY_AVX3 | HWY_AVX3_DL)) ? LanePairWalk::avx512
                             : (targets & HWY_AVX2)               ? LanePairWalk::avx2
