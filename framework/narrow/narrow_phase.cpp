@@ -210,10 +210,17 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   stage_ee_rows(plane, nvf, batch.ee, mesh_.edges().data(), x_t0_->data(), x_t1_->data());
   scratch.keep.resize(n);
   plane_filter(plane, reach, scratch.keep.data());
-  plane.compact(scratch.keep.data());
-  compact(batch, scratch.keep);
-  const std::size_t plane_kept = batch.vf.size() + batch.ee.size();
+  std::size_t plane_kept = 0;
+  for (std::size_t i = 0; i < n; ++i) plane_kept += scratch.keep[i];
   c.plane_culled += n - plane_kept;
+  // Moving a kept row costs about what stage 3's halves cost on a row (27 doubles; perf, n-body): when stage 2
+  // keeps most rows, the halves run on all of them, the culled ones too (their flags stay 0), and one compaction
+  // follows instead of two.
+  const bool compact_now = 2 * plane_kept < n;
+  if (compact_now) {
+    plane.compact(scratch.keep.data());
+    compact(batch, scratch.keep);
+  }
   const auto t_split = Clock::now();
   c.plane_ns += ns_since(t);
   // Stage 3 on stage 2's survivors, from the coefficients, threshold and reach stage 2 left in the rows: halves,
@@ -222,7 +229,7 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   for (const int levels : {kSplitCoarseLevels, kSplitLevels}) {
     const bool last = levels == kSplitLevels;
     kept_vf = batch.vf.size(), rows = kept_vf + batch.ee.size();
-    scratch.keep.assign(rows, 1);
+    if (last || compact_now) scratch.keep.assign(rows, 1);  // else: stage 2's flags, which the halves only clear
     scratch.open.resize(last ? rows : 0);
     std::uint16_t* open = last ? scratch.open.data() : nullptr;
     split_filter(plane, 0, kept_vf, true, scratch.keep.data(), levels, open);
