@@ -213,7 +213,7 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   std::size_t plane_kept = 0;
   for (std::size_t i = 0; i < n; ++i) plane_kept += scratch.keep[i];
   c.plane_culled += n - plane_kept;
-  // Moving a kept row costs about what stage 3's halves cost on a row (27 doubles; perf, n-body): when stage 2
+  // Moving a kept row (27 doubles) costs about what stage 3's halves cost on a row: when stage 2
   // keeps most rows, the halves run on all of them, the culled ones too (their flags stay 0), and one compaction
   // follows instead of two.
   const bool compact_now = 2 * plane_kept < n;

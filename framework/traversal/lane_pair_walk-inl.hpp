@@ -56,8 +56,8 @@ CCDLAB_WALK_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode
       if (self && ha == hb) {  // a self node (a pair node's homes differ)
         const BvhNode& A = na[ha];
         if (!A.is_leaf() && !(skip_root && skip_root[ha] >= 0)) {
-          // Testing L against R first kept out 4.4K of rod-twist's 80K (L, R) and read both from the binary
-          // array, away from the records: without it the walk is 1.08x faster (BM_TraverseWidth/4, docs/wide-bvh.md).
+          // (L, R) is pushed untested: testing it here culls few and reads the binary array, away from the
+          // records; its visit tests the lanes anyway (measured in docs/wide-bvh.md).
           push(home_a[A.left], home_a[A.right], slot_a[A.left], slot_a[A.right]);
           push(A.right, A.right, -1, -1);
           ha = hb = A.left;
@@ -80,9 +80,8 @@ CCDLAB_WALK_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode
     --cur.top;
     ha = cur.col_ha[cur.top], hb = cur.col_hb[cur.top], wa = cur.col_wa[cur.top], wb = cur.col_wb[cur.top];
     // Ask for the records of the node two below the top: visited next but one when this visit pushes nothing
-    // (the usual case near the leaves), or after this visit's pushes, still soon. The first read of a record was
-    // the walk's hottest instruction (a miss); one below the top came too late to help as much
-    // (BM_TraverseWidth/4, rod-twist: 1.08x with two below, 1.04x with one below, docs/wide-bvh.md). A self
+    // (the usual case near the leaves), or after this visit's pushes, still soon. The first read of a record is
+    // a miss; one below the top comes too late to hide it (docs/wide-bvh.md has the figures). A self
     // node's entry holds its node id, not a home: id / W is then some record (ids < 2 · records), a useless but
     // harmless prefetch.
     if (cur.top >= 2) prefetch_entry_records(wide_a, wide_b, cur, cur.top - 2);
