@@ -1,6 +1,7 @@
 #include "framework/narrow/narrow_phase.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 
 #include "framework/narrow/proximity_filter.hpp"
@@ -252,23 +253,47 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
 
 void NarrowPhase::test(const FeatureBatch& batch, Contacts& out, NarrowCounters& c) const {
   const auto t = Clock::now();
-  for (const VertexFacePair& p : batch.vf) test_vf(p.v, p.f, out, c);
-  for (const EdgeEdgePair& p : batch.ee) test_ee(p.a, p.b, out, c);
+  // In blocks, for testers with a batched kernel (PrimitiveTester::vertex_faces); a block's queries stay in L1.
+  const auto in_blocks = [&](const auto& pairs, auto query_of, auto run, auto record) {
+    constexpr std::size_t kBlock = 64;
+    std::array<decltype(query_of(pairs[0])), kBlock> queries;
+    std::array<CcdHit, kBlock> hits;
+    for (std::size_t b = 0; b < pairs.size(); b += kBlock) {
+      const std::size_t n = std::min(kBlock, pairs.size() - b);
+      for (std::size_t i = 0; i < n; ++i) queries[i] = query_of(pairs[b + i]);
+      run(std::span(queries.data(), n), hits.data());
+      for (std::size_t i = 0; i < n; ++i) record(pairs[b + i], hits[i]);
+    }
+  };
+  in_blocks(
+      batch.vf, [&](const VertexFacePair& p) { return vf_query(p.v, p.f); },
+      [&](std::span<const VertexFaceQuery> q, CcdHit* h) { tester_.vertex_faces(q, h); },
+      [&](const VertexFacePair& p, const CcdHit& h) { record_vf(p, h, out, c); });
+  in_blocks(
+      batch.ee, [&](const EdgeEdgePair& p) { return ee_query(p.a, p.b); },
+      [&](std::span<const EdgeEdgeQuery> q, CcdHit* h) { tester_.edge_edges(q, h); },
+      [&](const EdgeEdgePair& p, const CcdHit& h) { record_ee(p, h, out, c); });
   c.test_ns += ns_since(t);
 }
 
 void NarrowPhase::test_vf(Index v, Index f, Contacts& out, NarrowCounters& c) const {
-  const CcdHit hit = tester_.vertex_face(vf_query(v, f));
-  if (!counted(hit, c.vf_tests, c.contacts_vf, c)) return;
-  const Face& t = mesh_.face(f);
-  out.push_back(Contact{ContactKind::vf, v, f, {v, t[0], t[1], t[2]}, hit.toi, hit.coords});
+  record_vf({v, f}, tester_.vertex_face(vf_query(v, f)), out, c);
 }
 
 void NarrowPhase::test_ee(Index a, Index b, Contacts& out, NarrowCounters& c) const {
-  const CcdHit hit = tester_.edge_edge(ee_query(a, b));
+  record_ee({a, b}, tester_.edge_edge(ee_query(a, b)), out, c);
+}
+
+void NarrowPhase::record_vf(const VertexFacePair& p, const CcdHit& hit, Contacts& out, NarrowCounters& c) const {
+  if (!counted(hit, c.vf_tests, c.contacts_vf, c)) return;
+  const Face& t = mesh_.face(p.f);
+  out.push_back(Contact{ContactKind::vf, p.v, p.f, {p.v, t[0], t[1], t[2]}, hit.toi, hit.coords});
+}
+
+void NarrowPhase::record_ee(const EdgeEdgePair& p, const CcdHit& hit, Contacts& out, NarrowCounters& c) const {
   if (!counted(hit, c.ee_tests, c.contacts_ee, c)) return;
-  const Edge &ea = mesh_.edge(a), &eb = mesh_.edge(b);
-  out.push_back(Contact{ContactKind::ee, a, b, {ea[0], ea[1], eb[0], eb[1]}, hit.toi, hit.coords});
+  const Edge &ea = mesh_.edge(p.a), &eb = mesh_.edge(p.b);
+  out.push_back(Contact{ContactKind::ee, p.a, p.b, {ea[0], ea[1], eb[0], eb[1]}, hit.toi, hit.coords});
 }
 
 }  // namespace ccdlab

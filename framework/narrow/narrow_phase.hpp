@@ -76,6 +76,9 @@ class NarrowPhase {
   void test(const FeatureBatch& batch, Contacts& out, NarrowCounters& c) const;
   void test_vf(Index v, Index f, Contacts& out, NarrowCounters& c) const;
   void test_ee(Index a, Index b, Contacts& out, NarrowCounters& c) const;
+  /// Counts a test and adds its contact when it hit.
+  void record_vf(const VertexFacePair& p, const CcdHit& hit, Contacts& out, NarrowCounters& c) const;
+  void record_ee(const EdgeEdgePair& p, const CcdHit& hit, Contacts& out, NarrowCounters& c) const;
 
   const TriMesh& mesh_;
   const PrimitiveTester& tester_;

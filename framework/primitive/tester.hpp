@@ -1,7 +1,9 @@
 #pragma once
 // PrimitiveTester: the elementary continuous tests (vertex–face, edge–edge) under linear motion over one
 // step. Implementations form the accuracy ladder (float, filtered, conservative, exact); strategies/testers/.
+#include <cstddef>
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include "framework/primitive/contact.hpp"
@@ -22,6 +24,14 @@ class PrimitiveTester {
   [[nodiscard]] virtual double thickness() const = 0;
   [[nodiscard]] virtual CcdHit vertex_face(const VertexFaceQuery& q) const = 0;
   [[nodiscard]] virtual CcdHit edge_edge(const EdgeEdgeQuery& q) const = 0;
+  /// Many queries at once: out[i] = vertex_face(q[i]), and the same answers bit for bit. Testers with a batched
+  /// kernel override these (`float`); the narrow phase hands its survivors over in blocks.
+  virtual void vertex_faces(std::span<const VertexFaceQuery> q, CcdHit* out) const {
+    for (std::size_t i = 0; i < q.size(); ++i) out[i] = vertex_face(q[i]);
+  }
+  virtual void edge_edges(std::span<const EdgeEdgeQuery> q, CcdHit* out) const {
+    for (std::size_t i = 0; i < q.size(); ++i) out[i] = edge_edge(q[i]);
+  }
   /// The farthest two features can stay apart over the whole step and still be reported as a hit: the
   /// promise that lets the batched narrow phase drop pairs proven farther (plane_filter.hpp). None (the
   /// default) when the tester cannot bound it; the plane stage is then skipped for it.

@@ -15,6 +15,9 @@ class FilteredTester final : public PrimitiveTester {
   [[nodiscard]] double thickness() const override { return 0.0; }
   [[nodiscard]] CcdHit vertex_face(const VertexFaceQuery& q) const override;
   [[nodiscard]] CcdHit edge_edge(const EdgeEdgeQuery& q) const override;
+  /// The filter per query, then `float`'s batched search on the queries it leaves.
+  void vertex_faces(std::span<const VertexFaceQuery> q, CcdHit* out) const override;
+  void edge_edges(std::span<const EdgeEdgeQuery> q, CcdHit* out) const override;
   [[nodiscard]] std::optional<CullReach> cull_reach() const override { return CullReach{0, 2 * FloatTester::rel_tolerance}; }
 
  private:

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "framework/geometry/distance.hpp"
+#include "strategies/testers/float_roots.hpp"
 
 namespace ccdlab {
 namespace {
@@ -13,6 +14,7 @@ namespace {
 struct Moving {
   Vec3 x0, dx;
   [[nodiscard]] Vec3 at(double t) const { return x0 + t * dx; }
+  Moving operator-(const Moving& o) const { return {x0 - o.x0, dx - o.dx}; }
 };
 
 /// A short list of candidate times, without heap allocation (at most 2 + 3 + 3 + 16 entries are pushed).
@@ -48,13 +50,18 @@ void quadratic_roots(double a, double b, double c, TimeList& all) {
     if (t >= 0 && t <= 1) all.push_back(t);
 }
 
+/// A query's four points at t0, then the same four at t1.
+using QueryPoints = std::array<const Vec3*, 8>;
+
 /// Bounding-box diagonal of the query's points at t0 and t1: the length every tolerance is relative to.
-template <std::size_t N>
-double extent(const std::array<const Vec3*, N>& pts) {
+double extent(const QueryPoints& pts) {
   Box3 b;
   for (const Vec3* p : pts) b.grow(*p);
   return b.extent().norm();
 }
+
+/// Point k of the query, moving, relative to `origin` (one of the points at t0: less cancellation).
+Moving moving(const QueryPoints& p, int k, const Vec3& origin) { return {*p[k] - origin, *p[k + 4] - *p[k]}; }
 
 /// The candidate times of contact in increasing order, each offered to `hit(t)` until one returns true; returns
 /// whether one did. The candidates: t = 0 and t = 1 with thickness, the roots of f(t) = A(t)·(B(t)×C(t)) in
@@ -161,53 +168,58 @@ Vec3 plane_normal(const std::array<Vec3, 4>& p) {
   return best;
 }
 
-}  // namespace
+/// A query relative to one of its points (less cancellation): its four moving points, the cubic's vectors A, B, C
+/// (f(t) = A(t)·(B(t)×C(t))) and the extent L every tolerance is relative to. VF: A = v − f0, B = f1 − f0,
+/// C = f2 − f0.
+struct VfMotion {
+  Moving v, f0, f1, f2, A, B, C;
+  double L = 0;
 
-CcdHit FloatTester::vertex_face(const VertexFaceQuery& q) const {
-  const double L = extent<8>({&q.v_t0, &q.f0_t0, &q.f1_t0, &q.f2_t0, &q.v_t1, &q.f0_t1, &q.f1_t1, &q.f2_t1});
-  const Vec3 o = q.f0_t0;  // work relative to one point: less cancellation
-  const Moving v{q.v_t0 - o, q.v_t1 - q.v_t0}, f0{q.f0_t0 - o, q.f0_t1 - q.f0_t0},
-      f1{q.f1_t0 - o, q.f1_t1 - q.f1_t0}, f2{q.f2_t0 - o, q.f2_t1 - q.f2_t0};
-  const Moving A{v.x0 - f0.x0, v.dx - f0.dx}, B{f1.x0 - f0.x0, f1.dx - f0.dx}, C{f2.x0 - f0.x0, f2.dx - f0.dx};
-  auto f = [&](double t) { return A.at(t).dot(B.at(t).cross(C.at(t))); };
-  const double reach = params_.thickness + rel_tolerance * L;
-  CcdHit out;
-  const auto hit = [&](double t) {
+  static VfMotion of(const VertexFaceQuery& q) {
+    VfMotion m;
+    const QueryPoints p{&q.v_t0, &q.f0_t0, &q.f1_t0, &q.f2_t0, &q.v_t1, &q.f0_t1, &q.f1_t1, &q.f2_t1};
+    m.L = extent(p);
+    m.v = moving(p, 0, q.f0_t0), m.f0 = moving(p, 1, q.f0_t0), m.f1 = moving(p, 2, q.f0_t0), m.f2 = moving(p, 3, q.f0_t0);
+    m.A = m.v - m.f0, m.B = m.f1 - m.f0, m.C = m.f2 - m.f0;
+    return m;
+  }
+  /// Whether the vertex is within `reach` of the face at t; sets `out` when it is.
+  bool hit(double t, double reach, CcdHit& out) const {
     auto c = closest_point_triangle(v.at(t), f0.at(t), f1.at(t), f2.at(t));
     if (c.distance_sq <= reach * reach) out = {true, t, {c.bary[1], c.bary[2]}};
     return out.hit;
-  };
-  bool degenerate = false;
-  if (earliest_hit(A, B, C, f, L * L * L, params_.thickness > 0, degenerate, hit) || !degenerate) return out;
-  offer_coplanar_times([&](TimeList& times) {  // where the vertex crosses an edge's line
+  }
+  /// Coplanar motion: where the vertex crosses an edge's line.
+  void crossings(TimeList& times) const {
     for (double t : {0.0, 1.0}) {
       Vec3 n = plane_normal({v.at(t), f0.at(t), f1.at(t), f2.at(t)});
       crossing_times(v, f0, f1, n, times);
       crossing_times(v, f1, f2, n, times);
       crossing_times(v, f2, f0, n, times);
     }
-  }, hit);
-  return out;
-}
+  }
+};
 
-CcdHit FloatTester::edge_edge(const EdgeEdgeQuery& q) const {
-  const double L =
-      extent<8>({&q.ea0_t0, &q.ea1_t0, &q.eb0_t0, &q.eb1_t0, &q.ea0_t1, &q.ea1_t1, &q.eb0_t1, &q.eb1_t1});
-  const Vec3 o = q.ea0_t0;
-  const Moving a0{q.ea0_t0 - o, q.ea0_t1 - q.ea0_t0}, a1{q.ea1_t0 - o, q.ea1_t1 - q.ea1_t0},
-      b0{q.eb0_t0 - o, q.eb0_t1 - q.eb0_t0}, b1{q.eb1_t0 - o, q.eb1_t1 - q.eb1_t0};
-  const Moving A{b0.x0 - a0.x0, b0.dx - a0.dx}, B{a1.x0 - a0.x0, a1.dx - a0.dx}, C{b1.x0 - b0.x0, b1.dx - b0.dx};
-  auto f = [&](double t) { return A.at(t).dot(B.at(t).cross(C.at(t))); };
-  const double reach = params_.thickness + rel_tolerance * L;
-  CcdHit out;
-  const auto hit = [&](double t) {
+/// EE: A = b0 − a0, B = a1 − a0, C = b1 − b0.
+struct EeMotion {
+  Moving a0, a1, b0, b1, A, B, C;
+  double L = 0;
+
+  static EeMotion of(const EdgeEdgeQuery& q) {
+    EeMotion m;
+    const QueryPoints p{&q.ea0_t0, &q.ea1_t0, &q.eb0_t0, &q.eb1_t0, &q.ea0_t1, &q.ea1_t1, &q.eb0_t1, &q.eb1_t1};
+    m.L = extent(p);
+    m.a0 = moving(p, 0, q.ea0_t0), m.a1 = moving(p, 1, q.ea0_t0), m.b0 = moving(p, 2, q.ea0_t0), m.b1 = moving(p, 3, q.ea0_t0);
+    m.A = m.b0 - m.a0, m.B = m.a1 - m.a0, m.C = m.b1 - m.b0;
+    return m;
+  }
+  bool hit(double t, double reach, CcdHit& out) const {
     auto c = closest_segment_segment(a0.at(t), a1.at(t), b0.at(t), b1.at(t));
     if (c.distance_sq <= reach * reach) out = {true, t, {c.s, c.t}};
     return out.hit;
-  };
-  bool degenerate = false;
-  if (earliest_hit(A, B, C, f, L * L * L, params_.thickness > 0, degenerate, hit) || !degenerate) return out;
-  offer_coplanar_times([&](TimeList& times) {  // where an endpoint crosses the other edge's line
+  }
+  /// Coplanar motion: where an endpoint crosses the other edge's line.
+  void crossings(TimeList& times) const {
     for (double t : {0.0, 1.0}) {
       Vec3 n = plane_normal({a0.at(t), a1.at(t), b0.at(t), b1.at(t)});
       crossing_times(a0, b0, b1, n, times);
@@ -215,8 +227,75 @@ CcdHit FloatTester::edge_edge(const EdgeEdgeQuery& q) const {
       crossing_times(b0, a0, a1, n, times);
       crossing_times(b1, a0, a1, n, times);
     }
-  }, hit);
+  }
+};
+
+/// The whole test, one query.
+template <class Motion>
+CcdHit solve(const Motion& m, double thickness) {
+  auto f = [&](double t) { return m.A.at(t).dot(m.B.at(t).cross(m.C.at(t))); };
+  const double reach = thickness + FloatTester::rel_tolerance * m.L;
+  CcdHit out;
+  const auto hit = [&](double t) { return m.hit(t, reach, out); };
+  bool degenerate = false;
+  if (earliest_hit(m.A, m.B, m.C, f, m.L * m.L * m.L, thickness > 0, degenerate, hit) || !degenerate) return out;
+  offer_coplanar_times([&](TimeList& times) { m.crossings(times); }, hit);
   return out;
+}
+
+/// Many queries: the root search of a block in SIMD (float_roots.hpp), then per query the distance at the root it
+/// found, or the whole scalar test where the kernel cannot decide or later candidates follow a miss. The same
+/// answers as `solve`, bit for bit.
+template <class Motion, class Query>
+void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) {
+  if (thickness > 0) {  // the ends of the step are candidates too: the kernel does not cover it
+    for (std::size_t i = 0; i < queries.size(); ++i) out[i] = solve(Motion::of(queries[i]), thickness);
+    return;
+  }
+  constexpr std::size_t kBlock = 64, kStride = kBlock + 8;  // + 8: whole vectors past a short block's end
+  alignas(64) double columns[CubicColumns::count * kStride];
+  std::array<Motion, kBlock> motion;
+  std::array<FirstRoot, kBlock> kind;
+  std::array<double, kBlock> root;
+  std::array<std::uint8_t, kBlock> more;
+  for (std::size_t b = 0; b < queries.size(); b += kBlock) {
+    const std::size_t n = std::min(kBlock, queries.size() - b);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Motion& m = motion[i] = Motion::of(queries[b + i]);
+      const auto put = [&](int column, const Vec3& p) {
+        for (int axis = 0; axis < 3; ++axis) columns[kStride * std::size_t(column + axis) + i] = p[axis];
+      };
+      put(CubicColumns::A0x, m.A.x0), put(CubicColumns::dAx, m.A.dx);
+      put(CubicColumns::B0x, m.B.x0), put(CubicColumns::dBx, m.B.dx);
+      put(CubicColumns::C0x, m.C.x0), put(CubicColumns::dCx, m.C.dx);
+      columns[kStride * CubicColumns::f_scale + i] = m.L * m.L * m.L;
+    }
+    for (int column = 0; column < CubicColumns::count; ++column)
+      std::fill(columns + kStride * std::size_t(column) + n, columns + kStride * std::size_t(column + 1), 0.0);
+    first_coplanar_roots(columns, kStride, n, FloatTester::rel_tolerance, kind.data(), root.data(), more.data());
+    for (std::size_t i = 0; i < n; ++i) {
+      CcdHit& h = out[b + i];
+      h = CcdHit{};
+      if (kind[i] == FirstRoot::none) continue;
+      const Motion& m = motion[i];
+      if (kind[i] == FirstRoot::root && m.hit(root[i], thickness + FloatTester::rel_tolerance * m.L, h)) continue;
+      if (kind[i] == FirstRoot::scalar || more[i]) h = solve(m, thickness);
+    }
+  }
+}
+
+}  // namespace
+
+CcdHit FloatTester::vertex_face(const VertexFaceQuery& q) const { return solve(VfMotion::of(q), params_.thickness); }
+
+CcdHit FloatTester::edge_edge(const EdgeEdgeQuery& q) const { return solve(EeMotion::of(q), params_.thickness); }
+
+void FloatTester::vertex_faces(std::span<const VertexFaceQuery> q, CcdHit* out) const {
+  solve_batch<VfMotion>(q, params_.thickness, out);
+}
+
+void FloatTester::edge_edges(std::span<const EdgeEdgeQuery> q, CcdHit* out) const {
+  solve_batch<EeMotion>(q, params_.thickness, out);
 }
 
 }  // namespace ccdlab

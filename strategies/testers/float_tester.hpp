@@ -23,6 +23,9 @@ class FloatTester final : public PrimitiveTester {
   [[nodiscard]] double thickness() const override { return params_.thickness; }
   [[nodiscard]] CcdHit vertex_face(const VertexFaceQuery& q) const override;
   [[nodiscard]] CcdHit edge_edge(const EdgeEdgeQuery& q) const override;
+  /// The root search in SIMD for a block of queries (float_roots.hpp) at thickness 0; the same answers.
+  void vertex_faces(std::span<const VertexFaceQuery> q, CcdHit* out) const override;
+  void edge_edges(std::span<const EdgeEdgeQuery> q, CcdHit* out) const override;
   /// Hits are within η + rel_tolerance·L; twice the tolerance absorbs the rounding of the distances computed.
   [[nodiscard]] std::optional<CullReach> cull_reach() const override { return CullReach{params_.thickness, 2 * rel_tolerance}; }
 

@@ -20,22 +20,13 @@
 #include "framework/pipeline/ccd_pipeline.hpp"
 #include "strategies/registry.hpp"
 #include "strategies/testers/float_tester.hpp"
+#include "support/simd_targets.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
 namespace {
 
-/// Runs f once per SIMD target compiled in and supported here, with that target forced; then restores.
-template <class F>
-void for_each_simd_target(F&& f) {
-  const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
-  ASSERT_FALSE(targets.empty());
-  for (std::int64_t t : targets) {
-    hwy::SetSupportedTargetsForTest(t);
-    f(hwy::TargetName(t));
-  }
-  hwy::SetSupportedTargetsForTest(0);
-}
+using test::for_each_simd_target;
 
 /// Random moving pairs near each other at every scale, some exactly coplanar throughout, some degenerate.
 PlaneBatch random_plane_batch(std::size_t n, std::mt19937& rng) {

@@ -1,0 +1,206 @@
+// Highway compiles this file once per SIMD target (foreach_target.h) and picks one at run time.
+#include "strategies/testers/float_roots.hpp"
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "strategies/testers/float_roots.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace ccdlab {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+template <class V>
+struct Xyz {
+  V x, y, z;
+};
+
+// Eigen's Vector3d arithmetic, written out in its order: cross by the textbook formula, dot left to right.
+template <class V>
+HWY_INLINE Xyz<V> Cross(const Xyz<V>& y, const Xyz<V>& z) {
+  return {hn::Sub(hn::Mul(y.y, z.z), hn::Mul(y.z, z.y)), hn::Sub(hn::Mul(y.z, z.x), hn::Mul(y.x, z.z)),
+          hn::Sub(hn::Mul(y.x, z.y), hn::Mul(y.y, z.x))};
+}
+template <class V>
+HWY_INLINE V Dot(const Xyz<V>& x, const Xyz<V>& y) {
+  return hn::Add(hn::Add(hn::Mul(x.x, y.x), hn::Mul(x.y, y.y)), hn::Mul(x.z, y.z));
+}
+
+/// A moving vector x0 + t·dx (Moving::at).
+template <class V>
+struct MovingV {
+  Xyz<V> x0, dx;
+  HWY_INLINE Xyz<V> at(V t) const {
+    return {hn::Add(x0.x, hn::Mul(t, dx.x)), hn::Add(x0.y, hn::Mul(t, dx.y)), hn::Add(x0.z, hn::Mul(t, dx.z))};
+  }
+};
+
+template <class V>
+struct Cubic {
+  MovingV<V> A, B, C;
+  /// f(t) from the positions at t, as the scalar tester evaluates it.
+  HWY_INLINE V operator()(V t) const { return Dot(A.at(t), Cross(B.at(t), C.at(t))); }
+};
+
+/// Roots in [0, 1] of a t² + b t + c (quadratic_roots in float_tester.cpp): r1, r2 with their validity masks.
+template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
+HWY_INLINE void QuadraticRoots(D d, V a, V b, V c, V& r1, M& ok1, V& r2, M& ok2) {
+  const V zero = hn::Zero(d);
+  const V scale = hn::Max(hn::Max(hn::Abs(a), hn::Abs(b)), hn::Abs(c));
+  const M any = hn::Ne(scale, zero);
+  const V tiny = hn::Mul(hn::Set(d, 1e-14), scale);
+  const M linear = hn::Le(hn::Abs(a), tiny);
+  // Linear: one root −c/b when b is not negligible.
+  const V lin_root = hn::Div(hn::Neg(c), b);
+  const M lin_ok = hn::And(linear, hn::Gt(hn::Abs(b), tiny));
+  // Quadratic: a slightly negative discriminant counts as zero.
+  V disc = hn::Sub(hn::Mul(b, b), hn::Mul(hn::Mul(hn::Set(d, 4.0), a), c));
+  const M negative = hn::Lt(disc, zero);
+  const M clamp = hn::And(negative, hn::Gt(disc, hn::Mul(hn::Mul(hn::Set(d, -1e-12), b), b)));
+  disc = hn::IfThenElse(clamp, zero, disc);
+  const M quad_ok = hn::AndNot(linear, hn::Or(hn::Not(negative), clamp));
+  const V q = hn::Mul(hn::Set(d, -0.5), hn::Add(b, hn::CopySign(hn::Sqrt(hn::IfThenElse(quad_ok, disc, zero)), b)));
+  const V q_root1 = hn::Div(q, a), q_root2 = hn::Div(c, q);
+  const M in1 = hn::Or(lin_ok, quad_ok), in2 = hn::AndNot(linear, hn::And(quad_ok, hn::Ne(q, zero)));
+  r1 = hn::IfThenElse(linear, lin_root, q_root1);
+  r2 = q_root2;
+  const auto in_unit = [&](V r) { return hn::And(hn::Ge(r, zero), hn::Le(r, hn::Set(d, 1.0))); };
+  ok1 = hn::And(any, hn::And(in1, in_unit(r1)));
+  ok2 = hn::And(any, hn::And(in2, in_unit(r2)));
+}
+
+template <class V>
+HWY_INLINE void SortPair(V& a, V& b) {
+  const V lo = hn::Min(a, b);
+  b = hn::Max(a, b), a = lo;
+}
+
+void FirstCoplanarRoots(const double* columns, std::size_t stride, std::size_t n, double rel_tolerance,
+                        FirstRoot* kind, double* t_out, std::uint8_t* more_out) {
+  const hn::ScalableTag<double> d;
+  using V = hn::Vec<decltype(d)>;
+  using M = hn::Mask<decltype(d)>;
+  const std::size_t N = hn::Lanes(d);
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0), inf = hn::Set(d, HUGE_VAL);
+  for (std::size_t i = 0; i < n; i += N) {
+    const auto col = [&](int k) { return hn::LoadU(d, columns + stride * std::size_t(k) + i); };
+    const auto xyz = [&](int k) { return Xyz<V>{col(k), col(k + 1), col(k + 2)}; };
+    const Cubic<V> f{{xyz(CubicColumns::A0x), xyz(CubicColumns::dAx)},
+                     {xyz(CubicColumns::B0x), xyz(CubicColumns::dBx)},
+                     {xyz(CubicColumns::C0x), xyz(CubicColumns::dCx)}};
+    const V f_scale = col(CubicColumns::f_scale);
+    const Xyz<V>&A0 = f.A.x0, &dA = f.A.dx, &B0 = f.B.x0, &dB = f.B.dx, &C0 = f.C.x0, &dC = f.C.dx;
+    // The coefficients of f(t) = a t³ + b t² + c t + dd, in earliest_hit's order.
+    const Xyz<V> B0C0 = Cross(B0, C0);
+    const V dd = Dot(A0, B0C0);
+    const V c = hn::Add(hn::Add(Dot(dA, B0C0), Dot(A0, Cross(dB, C0))), Dot(A0, Cross(B0, dC)));
+    const V b = hn::Add(hn::Add(Dot(dA, Cross(dB, C0)), Dot(dA, Cross(B0, dC))), Dot(A0, Cross(dB, dC)));
+    const V a = Dot(dA, Cross(dB, dC));
+    const V big = hn::Max(hn::Max(hn::Abs(a), hn::Abs(b)), hn::Max(hn::Abs(c), hn::Abs(dd)));
+    // Coplanar motion, or a NaN anywhere: the scalar tester decides.
+    M scalar = hn::Not(hn::Gt(big, hn::Mul(hn::Set(d, 1e-12), f_scale)));
+    scalar = hn::Or(scalar, hn::Not(hn::IsFinite(hn::Add(hn::Add(a, b), hn::Add(c, dd)))));
+    const V tol = hn::Mul(hn::Set(d, rel_tolerance), f_scale);
+    const V neg_tol = hn::Neg(tol);
+    // Bernstein early out: all four coefficients beyond ±tol on one side.
+    const V three = hn::Set(d, 3.0);
+    const V b0 = dd, b1 = hn::Add(dd, hn::Div(c, three)),
+            b2 = hn::Add(dd, hn::Div(hn::Add(hn::Mul(hn::Set(d, 2.0), c), b), three)),
+            b3 = hn::Add(hn::Add(hn::Add(dd, c), b), a);
+    const M above = hn::And(hn::And(hn::Gt(b0, tol), hn::Gt(b1, tol)), hn::And(hn::Gt(b2, tol), hn::Gt(b3, tol)));
+    const M below =
+        hn::And(hn::And(hn::Lt(b0, neg_tol), hn::Lt(b1, neg_tol)), hn::And(hn::Lt(b2, neg_tol), hn::Lt(b3, neg_tol)));
+    const M decided = hn::Or(scalar, hn::Or(above, below));
+    // Breakpoints: 0, 1 and the roots of f′ = 3a t² + 2b t + c in [0, 1], sorted; a missing root sorts last as +∞.
+    V r1, r2;
+    M ok1, ok2;
+    QuadraticRoots(d, hn::Mul(three, a), hn::Mul(hn::Set(d, 2.0), b), c, r1, ok1, r2, ok2);
+    // A root at ±0 ties with the breakpoint 0 but may differ from it in sign; which one std::sort puts first is
+    // not worth mirroring: such a lane goes to the scalar tester.
+    scalar = hn::Or(scalar, hn::Or(hn::And(ok1, hn::Eq(r1, zero)), hn::And(ok2, hn::Eq(r2, zero))));
+    V s[4] = {zero, one, hn::IfThenElse(ok1, r1, inf), hn::IfThenElse(ok2, r2, inf)};
+    SortPair(s[0], s[1]), SortPair(s[2], s[3]), SortPair(s[0], s[2]), SortPair(s[1], s[3]), SortPair(s[1], s[2]);
+    M exists[4];
+    V value[4];
+    for (int k = 0; k < 4; ++k) {
+      exists[k] = hn::Ne(s[k], inf);
+      value[k] = f(hn::IfThenElse(exists[k], s[k], zero));
+    }
+    // The first event in order: a breakpoint where f touches zero (scalar), else the first sign change (root).
+    const M none = hn::Ne(zero, zero);
+    M found = hn::Or(decided, scalar), more = none, root = none;
+    V lo = zero, hi = zero, flo = zero, fhi = zero;
+    for (int k = 0; k < 4; ++k) {
+      const M touch = hn::And(exists[k], hn::Le(hn::Abs(value[k]), tol));
+      M change = none;
+      if (k + 1 < 4) {
+        const V u = value[k], w = value[k + 1];
+        const M sign = hn::Or(hn::And(hn::Lt(u, zero), hn::Gt(w, zero)), hn::And(hn::Gt(u, zero), hn::Lt(w, zero)));
+        change = hn::And(exists[k + 1], sign);
+      }
+      more = hn::Or(more, hn::And(root, hn::Or(touch, change)));
+      scalar = hn::Or(scalar, hn::AndNot(found, touch));
+      found = hn::Or(found, touch);
+      const M first = hn::AndNot(found, change);
+      if (k + 1 < 4) {
+        lo = hn::IfThenElse(first, s[k], lo), hi = hn::IfThenElse(first, s[k + 1], hi);
+        flo = hn::IfThenElse(first, value[k], flo), fhi = hn::IfThenElse(first, value[k + 1], fhi);
+      }
+      root = hn::Or(root, first);
+      found = hn::Or(found, first);
+    }
+    // Illinois false position on each root lane's interval, lane by lane as the scalar loop runs it.
+    const V eps = hn::Set(d, 1e-15), half = hn::Set(d, 0.5);
+    V side = zero;  // −1: the last step moved lo; +1: hi
+    M active = hn::And(root, hn::Gt(hn::Sub(hi, lo), eps));
+    for (int it = 0; it < 100 && !hn::AllFalse(d, active); ++it) {
+      V t = hn::Div(hn::Sub(hn::Mul(lo, fhi), hn::Mul(hi, flo)), hn::Sub(fhi, flo));
+      t = hn::IfThenElse(hn::And(hn::Gt(t, lo), hn::Lt(t, hi)), t, hn::Mul(half, hn::Add(lo, hi)));
+      const V ft = f(t);
+      const M exact = hn::And(active, hn::Eq(ft, zero));
+      const M moves = hn::AndNot(exact, active);
+      const M same = hn::Not(hn::Xor(hn::Lt(ft, zero), hn::Lt(flo, zero)));
+      const M move_lo = hn::And(moves, same), move_hi = hn::AndNot(same, moves);
+      // lo side: lo = t, flo = ft, and fhi halves when lo moved last time too.
+      fhi = hn::IfThenElse(hn::And(move_lo, hn::Eq(side, hn::Set(d, -1.0))), hn::Mul(fhi, half), fhi);
+      // hi side: hi = t, fhi = ft, and flo (the old one) halves when hi moved last time too.
+      flo = hn::IfThenElse(hn::And(move_hi, hn::Eq(side, one)), hn::Mul(flo, half), flo);
+      lo = hn::IfThenElse(hn::Or(move_lo, exact), t, lo), flo = hn::IfThenElse(move_lo, ft, flo);
+      hi = hn::IfThenElse(hn::Or(move_hi, exact), t, hi), fhi = hn::IfThenElse(move_hi, ft, fhi);
+      side = hn::IfThenElse(move_lo, hn::Set(d, -1.0), hn::IfThenElse(move_hi, one, side));
+      active = hn::AndNot(exact, hn::And(active, hn::Gt(hn::Sub(hi, lo), eps)));
+    }
+    const V t = hn::Mul(half, hn::Add(lo, hi));
+    // Per lane: scalar wins over everything, then root; the rest has no candidate at all.
+    HWY_ALIGN double t_lanes[HWY_MAX_BYTES / sizeof(double)];
+    HWY_ALIGN double kind_lanes[HWY_MAX_BYTES / sizeof(double)];
+    HWY_ALIGN double more_lanes[HWY_MAX_BYTES / sizeof(double)];
+    hn::Store(t, d, t_lanes);
+    hn::Store(hn::IfThenElse(scalar, hn::Set(d, 2.0), hn::IfThenElse(root, one, zero)), d, kind_lanes);
+    hn::Store(hn::IfThenElse(more, one, zero), d, more_lanes);
+    for (std::size_t j = 0; j < N && i + j < n; ++j) {
+      kind[i + j] = FirstRoot(int(kind_lanes[j]));
+      t_out[i + j] = t_lanes[j];
+      more_out[i + j] = std::uint8_t(more_lanes[j] != 0);
+    }
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace ccdlab
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace ccdlab {
+
+HWY_EXPORT(FirstCoplanarRoots);
+
+void first_coplanar_roots(const double* columns, std::size_t stride, std::size_t n, double rel_tolerance,
+                          FirstRoot* kind, double* t, std::uint8_t* more) {
+  if (n == 0) return;
+  HWY_DYNAMIC_DISPATCH(FirstCoplanarRoots)(columns, stride, n, rel_tolerance, kind, t, more);
+}
+
+}  // namespace ccdlab
+#endif  // HWY_ONCE

@@ -1,0 +1,33 @@
+#pragma once
+// The `float` tester's root search for many queries at once (SIMD, Highway with run-time dispatch).
+//
+// FloatTester (float_tester.hpp) looks for the earliest root in [0, 1] of the coplanarity cubic
+// f(t) = A(t)·(B(t)×C(t)): the coefficients, the Bernstein early out, the breakpoints (roots of f′), f at each,
+// then Illinois false position on the first interval where f changes sign. This kernel does exactly that for a
+// block of queries, one per lane, with the same operations in the same order as the scalar code (no fused
+// multiply-adds: both files are compiled with -ffp-contract=off), so a lane's root is the scalar tester's root
+// bit for bit. It answers only what it can decide that way; the rest goes back to the scalar tester:
+//   - none:   f has no root and no touching point in [0, 1] — no contact (thickness 0);
+//   - root:   `t` is the refined root of the first sign change, the first candidate time; the caller checks the
+//             distance there. When `more` is set, later candidates exist and a miss at `t` is not the answer;
+//   - scalar: anything else (coplanar motion, a breakpoint where f touches zero, non-finite coefficients).
+// With thickness > 0 the ends of the step are candidates too; the caller does not use this kernel then.
+#include <cstddef>
+#include <cstdint>
+
+namespace ccdlab {
+
+enum class FirstRoot : std::uint8_t { none, root, scalar };
+
+/// One block of queries in columns: column k of row i at columns[k·stride + i], for rows [0, n).
+struct CubicColumns {
+  /// The motion relative to the query's origin: A(t) = A0 + t·dA, and so on; f_scale = L³ (FloatTester).
+  enum : int { A0x, A0y, A0z, dAx, dAy, dAz, B0x, B0y, B0z, dBx, dBy, dBz, C0x, C0y, C0z, dCx, dCy, dCz, f_scale, count };
+};
+
+/// kind[i], t[i] and more[i] for rows [0, n) of the block; `rel_tolerance` as FloatTester's. The columns must
+/// be readable up to a multiple of 8 rows past n (the padding's answers are written and meaningless).
+void first_coplanar_roots(const double* columns, std::size_t stride, std::size_t n, double rel_tolerance,
+                          FirstRoot* kind, double* t, std::uint8_t* more);
+
+}  // namespace ccdlab

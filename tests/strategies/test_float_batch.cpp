@@ -1,0 +1,180 @@
+// The `float` tester's batched root search (float_roots.hpp) gives the scalar tester's answers bit for bit (hit,
+// time of contact, coordinates) on every SIMD target: on random near contacts at every scale, on exact-integer
+// queries whose cubics have roots and touching points at breakpoints, on the built-in hard cases and on the
+// shared query sets (skipped where ../shared/data is absent). The kernel's three answers are all exercised;
+// `filtered`, which hands what its filter leaves to the batch, answers as its scalar self.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "framework/queries/hard_cases.hpp"
+#include "framework/queries/query_set.hpp"
+#include "strategies/testers/filtered_tester.hpp"
+#include "strategies/testers/float_roots.hpp"
+#include "strategies/testers/float_tester.hpp"
+#include "support/simd_targets.hpp"
+#include "support/test_meshes.hpp"
+
+namespace ccdlab {
+namespace {
+
+bool same_bits(const CcdHit& a, const CcdHit& b) {
+  return a.hit == b.hit && a.route == b.route && std::bit_cast<std::uint64_t>(a.toi) == std::bit_cast<std::uint64_t>(b.toi) &&
+         std::bit_cast<std::uint64_t>(a.coords[0]) == std::bit_cast<std::uint64_t>(b.coords[0]) &&
+         std::bit_cast<std::uint64_t>(a.coords[1]) == std::bit_cast<std::uint64_t>(b.coords[1]);
+}
+
+/// Random queries near contact at scales 1e-4 … 1e2 and offsets up to 1e3: a vertex (or edge) passing through,
+/// beside or just short of a face (edge), some with the face turning so the cubic has two or three roots. Every
+/// 7th is built on a small integer grid, where f often has exact zeros at 0, 1 and at f′'s roots.
+struct RandomQueries {
+  std::vector<VertexFaceQuery> vf;
+  std::vector<EdgeEdgeQuery> ee;
+};
+RandomQueries random_queries(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1), scale(-4, 2), offset(-3, 3);
+  std::uniform_int_distribution<int> grid(-2, 2);
+  RandomQueries r;
+  for (int i = 0; i < n; ++i) {
+    const bool integer = i % 7 == 0;
+    const double s = integer ? 1.0 : std::pow(10.0, scale(rng));
+    const Vec3 o = integer ? Vec3(Vec3::Zero()) : Vec3(Vec3(u(rng), u(rng), u(rng)) * std::pow(10.0, offset(rng)));
+    const auto point = [&](double z) {
+      return integer ? Vec3(grid(rng), grid(rng), grid(rng) % 2) : Vec3(o + s * Vec3(u(rng), u(rng), z * u(rng)));
+    };
+    const auto moved = [&](const Vec3& p, double amount) {
+      return integer ? Vec3(p + Vec3(grid(rng), grid(rng), grid(rng))) : Vec3(p + amount * s * Vec3(u(rng), u(rng), u(rng)));
+    };
+    const double turn = i % 3 == 0 ? 1.0 : 0.05;  // a third of the faces turn a lot: several roots
+    std::array<Vec3, 8> p;
+    for (int k = 0; k < 4; ++k) p[k] = point(k == 0 ? 1.0 : 0.05);
+    p[4] = integer ? moved(p[0], 0) : Vec3(p[0] - Vec3(0, 0, 2 * (p[0] - o).z()) + 0.3 * s * Vec3(u(rng), u(rng), 0));
+    for (int k = 1; k < 4; ++k) p[4 + k] = moved(p[k], turn);
+    if (i % 11 == 0) p[4] = p[0];  // a still vertex
+    r.vf.push_back({p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7]});
+    // EE: edge (p0, p1) against (p2, p3), the first crossing the second's line.
+    r.ee.push_back({p[1], p[2], p[0], p[3], p[5], p[6], p[4], p[7]});
+  }
+  return r;
+}
+
+template <class Query>
+void expect_batch_equals_scalar(const PrimitiveTester& tester, const std::vector<Query>& queries, const std::string& what,
+                                std::size_t* hits = nullptr) {
+  std::vector<CcdHit> batch(queries.size());
+  if constexpr (std::is_same_v<Query, VertexFaceQuery>) tester.vertex_faces(queries, batch.data());
+  else tester.edge_edges(queries, batch.data());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    CcdHit scalar;
+    if constexpr (std::is_same_v<Query, VertexFaceQuery>) scalar = tester.vertex_face(queries[i]);
+    else scalar = tester.edge_edge(queries[i]);
+    if (!same_bits(batch[i], scalar) && differ++ < 5)
+      ADD_FAILURE() << what << " query " << i << ": batch " << batch[i].hit << " t=" << batch[i].toi << ", scalar "
+                    << scalar.hit << " t=" << scalar.toi;
+    if (hits) *hits += scalar.hit;
+  }
+  EXPECT_EQ(differ, 0u) << what;
+}
+
+TEST(FloatBatch, EverySimdTargetGivesTheScalarAnswersBitForBit) {
+  const RandomQueries r = random_queries(6000, 11);
+  test::for_each_simd_target([&](const char* target) {
+    for (const double thickness : {0.0, 1e-3}) {
+      const FloatTester tester({thickness});
+      std::size_t vf_hits = 0, ee_hits = 0;
+      const std::string what = std::string(target) + " thickness " + std::to_string(thickness);
+      expect_batch_equals_scalar(tester, r.vf, what + " VF", &vf_hits);
+      expect_batch_equals_scalar(tester, r.ee, what + " EE", &ee_hits);
+      // Both answers are well represented: the comparison is not between two "no".
+      EXPECT_GT(vf_hits, 300u) << what;
+      EXPECT_LT(vf_hits, 5400u) << what;
+      EXPECT_GT(ee_hits, 300u) << what;
+      EXPECT_LT(ee_hits, 5400u) << what;
+    }
+  });
+}
+
+TEST(FloatBatch, FilteredBatchGivesItsScalarAnswers) {
+  const RandomQueries r = random_queries(3000, 23);
+  const FilteredTester tester;
+  std::size_t hits = 0, culled = 0;
+  std::vector<CcdHit> batch(r.ee.size());
+  tester.edge_edges(r.ee, batch.data());
+  for (const CcdHit& h : batch) culled += h.route == TestRoute::filter;
+  expect_batch_equals_scalar(tester, r.vf, "filtered VF", &hits);
+  expect_batch_equals_scalar(tester, r.ee, "filtered EE", &hits);
+  EXPECT_GT(hits, 300u);
+  EXPECT_GT(culled, 300u);  // the filter decides some, `float` the rest
+  EXPECT_LT(culled, 2700u);
+}
+
+TEST(FloatBatch, HardCasesGiveTheScalarAnswersBitForBit) {
+  const FloatTester tester;
+  test::for_each_simd_target([&](const char* target) {
+    for (const QuerySet& s : hard_case_sets()) {
+      if (s.kind == ContactKind::vf) expect_batch_equals_scalar(tester, s.vf, std::string(target) + " " + s.name);
+      else expect_batch_equals_scalar(tester, s.ee, std::string(target) + " " + s.name);
+    }
+  });
+}
+
+TEST(FloatBatch, SharedQuerySetsGiveTheScalarAnswersBitForBit) {
+  const std::string root = test::shared_data();
+  if (root.empty()) GTEST_SKIP() << "../shared/data not found: shared query sets skipped";
+  const FloatTester tester;
+  std::size_t queries = 0;
+  for (const QuerySet& s : load_query_sets(root + "/ccd-queries")) {
+    queries += s.size();
+    if (s.kind == ContactKind::vf) expect_batch_equals_scalar(tester, s.vf, s.name);
+    else expect_batch_equals_scalar(tester, s.ee, s.name);
+  }
+  EXPECT_GT(queries, 0u);
+}
+
+/// The kernel's answers on the random family, straight from its columns: every kind occurs, and `more` too.
+TEST(FloatBatch, KernelAnswersEveryKind) {
+  const RandomQueries r = random_queries(2000, 5);
+  constexpr std::size_t kStride = 2008;
+  std::vector<double> columns(CubicColumns::count * kStride, 0.0);
+  for (std::size_t i = 0; i < r.vf.size(); ++i) {
+    const VertexFaceQuery& q = r.vf[i];
+    const Vec3 A0 = q.v_t0 - q.f0_t0, B0 = q.f1_t0 - q.f0_t0, C0 = q.f2_t0 - q.f0_t0;
+    const Vec3 dA = (q.v_t1 - q.f0_t1) - A0, dB = (q.f1_t1 - q.f0_t1) - B0, dC = (q.f2_t1 - q.f0_t1) - C0;
+    const std::array<const Vec3*, 6> vectors{&A0, &dA, &B0, &dB, &C0, &dC};
+    for (int v = 0; v < 6; ++v)
+      for (int axis = 0; axis < 3; ++axis) columns[kStride * std::size_t(3 * v + axis) + i] = (*vectors[v])[axis];
+    const double L = 10 * (A0.norm() + B0.norm() + C0.norm());
+    columns[kStride * CubicColumns::f_scale + i] = L * L * L;
+  }
+  test::for_each_simd_target([&](const char* target) {
+    std::vector<FirstRoot> kind(r.vf.size());
+    std::vector<double> t(r.vf.size());
+    std::vector<std::uint8_t> more(r.vf.size());
+    first_coplanar_roots(columns.data(), kStride, r.vf.size(), FloatTester::rel_tolerance, kind.data(), t.data(), more.data());
+    std::array<int, 3> count{};
+    int with_more = 0;
+    for (std::size_t i = 0; i < kind.size(); ++i) {
+      ++count[int(kind[i])];
+      if (kind[i] == FirstRoot::root) {
+        EXPECT_GE(t[i], 0.0) << target;
+        EXPECT_LE(t[i], 1.0) << target;
+        with_more += more[i];
+      }
+    }
+    EXPECT_GT(count[int(FirstRoot::none)], 20) << target;
+    EXPECT_GT(count[int(FirstRoot::root)], 500) << target;
+    EXPECT_GT(count[int(FirstRoot::scalar)], 20) << target;
+    EXPECT_GT(with_more, 20) << target;
+  });
+}
+
+}  // namespace
+}  // namespace ccdlab
