@@ -1,6 +1,6 @@
 // Micro-benchmarks of the sequential pipeline's phases, per K, on one step of the built-in drape_fold scene
 // (the step with the most candidates of the default run). Run: build/bin/ccdlab_microbench
-//   --benchmark_filter=Traverse   (or TraverseWidth, SweptBv, Refit, Step, FloatTester, Tester)
+//   --benchmark_filter=Traverse   (or TraverseWidth, SweptBv, Refit, Step, FloatTester, FloatTesterSurvivors, Tester)
 // Google Benchmark interleaves nothing by itself: compare ratios within one invocation. CCDLAB_SIMD=avx2 (as for
 // the command line, docs/config.md) limits the kernels, e.g. to time width 4's AVX2 walk on an AVX-512 CPU
 // (CCDLAB_SIMD=sse4: the SSE2 walk).
@@ -176,6 +176,43 @@ void BM_FloatTesterEdgeEdge(benchmark::State& state) {
   state.counters["hit_rate"] = double(hits) / double(state.iterations());
 }
 BENCHMARK(BM_FloatTesterEdgeEdge);
+
+// `float` on queries like the narrow phase's survivors: each crosses the other's plane during the step (the cubic
+// has a root to refine), some 15–20% touching. One query at a time against the batched root search
+// (float_roots.hpp). Args: 0 VF, 1 EE; 0 one at a time, 1 batched. ns per query = the time / 4096.
+void BM_FloatTesterSurvivors(benchmark::State& state) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const auto slab = [&] { return Vec3(u(rng), u(rng), 0.05 * u(rng)); };
+  const auto turned = [&](const Vec3& p) { return Vec3(p + 0.1 * Vec3(u(rng), u(rng), u(rng))); };
+  constexpr std::size_t kQueries = 4096;
+  std::vector<VertexFaceQuery> vf(kQueries);
+  std::vector<EdgeEdgeQuery> ee(kQueries);
+  for (std::size_t i = 0; i < kQueries; ++i) {
+    const Vec3 a = slab(), b = slab(), c = slab(), v = 0.6 * Vec3(u(rng), u(rng), 0);
+    vf[i] = {v + Vec3(0, 0, 1), a, b, c, v - Vec3(0, 0, 1) + 0.2 * Vec3(u(rng), u(rng), 0), turned(a), turned(b), turned(c)};
+    const Vec3 e0 = 0.6 * Vec3(u(rng), u(rng), 1), e1 = 0.6 * Vec3(u(rng), u(rng), 1);
+    ee[i] = {e0, e1, a, b, e0 - Vec3(0, 0, 1.2), e1 - Vec3(0, 0, 1.2), turned(a), turned(b)};
+  }
+  const FloatTester t;
+  const bool edges = state.range(0) == 1, batched = state.range(1) == 1;
+  std::vector<CcdHit> hits(kQueries);
+  for (auto _ : state) {
+    if (batched) {
+      if (edges) t.edge_edges(ee, hits.data());
+      else t.vertex_faces(vf, hits.data());
+    } else {
+      for (std::size_t i = 0; i < kQueries; ++i) hits[i] = edges ? t.edge_edge(ee[i]) : t.vertex_face(vf[i]);
+    }
+    benchmark::DoNotOptimize(hits.data());
+  }
+  std::size_t n_hit = 0;
+  for (const CcdHit& h : hits) n_hit += h.hit;
+  state.SetLabel(std::string(edges ? "EE" : "VF") + (batched ? " batched" : " one at a time"));
+  state.counters["hit_rate"] = double(n_hit) / double(kQueries);
+  state.SetItemsProcessed(std::int64_t(state.iterations() * kQueries));
+}
+BENCHMARK(BM_FloatTesterSurvivors)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 // The accuracy ladder on random edge–edge queries (mostly separated: the filters' case) and on every built-in
 // hard case (degenerate: the expensive paths). Arg: 0 float, 1 filtered, 2 conservative, 3 exact.
