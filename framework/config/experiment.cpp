@@ -194,6 +194,20 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
   c.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
   if (!root["scene"]) fail("{}: scene: required key missing (e.g. scene: {{builtin: drape_fold}})", path);
   c.scene = read_scene(r, root["scene"], path, reg);
+  read_strategy_section(r, root, reg, c);
+  c.output.dir = "results/" + c.name;
+  if (const YAML::Node o = root["output"]) {
+    r.check_keys(o, "output", {"dir", "csv", "jsonl", "contacts"});
+    if (o["dir"]) c.output.dir = r.string(o["dir"], "output.dir");
+    if (o["csv"]) c.output.csv = r.boolean(o["csv"], "output.csv");
+    if (o["jsonl"]) c.output.jsonl = r.boolean(o["jsonl"], "output.jsonl");
+    if (o["contacts"]) c.output.contacts = r.boolean(o["contacts"], "output.contacts");
+  }
+  return c;
+}
+}  // namespace
+
+void read_strategy_section(const YamlReader& r, const YAML::Node& root, const Registries& reg, ExperimentConfig& c) {
   if (root["bv"]) {
     r.check_keys(root["bv"], "bv", {"k", "width"});
     if (root["bv"]["k"]) {
@@ -242,17 +256,7 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
     if (!root["memory_limit"]) throw;
     r.error(root["memory_limit"], "memory_limit", "a size like 8GiB, 512MiB or 60% (of this machine's memory), or none");
   }
-  c.output.dir = "results/" + c.name;
-  if (const YAML::Node o = root["output"]) {
-    r.check_keys(o, "output", {"dir", "csv", "jsonl", "contacts"});
-    if (o["dir"]) c.output.dir = r.string(o["dir"], "output.dir");
-    if (o["csv"]) c.output.csv = r.boolean(o["csv"], "output.csv");
-    if (o["jsonl"]) c.output.jsonl = r.boolean(o["jsonl"], "output.jsonl");
-    if (o["contacts"]) c.output.contacts = r.boolean(o["contacts"], "output.contacts");
-  }
-  return c;
 }
-}  // namespace
 
 nlohmann::json to_json(const ExperimentConfig& c) {
   nlohmann::json j;

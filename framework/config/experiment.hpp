@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "framework/config/registry.hpp"
+#include "framework/config/yaml_reader.hpp"
 #include "framework/hierarchy/bvh.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
 #include "framework/primitive/tester.hpp"
@@ -82,5 +83,9 @@ std::string to_yaml(const nlohmann::json& j);
 
 MeshSequence make_scene(const ExperimentConfig& config, const Registries& registries);
 PipelineStrategies make_strategies(const ExperimentConfig& config, const Registries& registries);
+/// The strategy section of a config — bv, hierarchy, restructure, normal_cones, scheduler, threads, tester,
+/// narrow, memory_limit — from the map `root` into `c` (the keys present; the others keep their values). The
+/// caller checks which keys may appear. Errors are located by `r`.
+void read_strategy_section(const YamlReader& r, const YAML::Node& root, const Registries& registries, ExperimentConfig& c);
 
 }  // namespace ccdlab

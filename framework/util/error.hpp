@@ -7,12 +7,10 @@
 
 #include <fmt/format.h>
 
+#include "framework/api/ccdlab/error.hpp"  // class Error (the C++ API installs it)
+
 namespace ccdlab {
 
-class Error : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 /// `text` cut to `max` characters with every byte outside printable ASCII written as \xNN: file content
 /// quoted in an error message (a corrupt or binary file) stays one readable line.

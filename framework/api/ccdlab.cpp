@@ -1,0 +1,206 @@
+// The C++ API (ccdlab/ccdlab.hpp) over the framework: options → PipelineStrategies through the experiment
+// config's own reader, bodies → one concatenated TriMesh, and a CcdPipeline kept across steps.
+#include "ccdlab/ccdlab.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <optional>
+#include <utility>
+
+#include "framework/config/experiment.hpp"
+#include "framework/config/strategy_spec.hpp"
+#include "framework/mesh/mesh_io.hpp"
+#include "framework/pipeline/bodies.hpp"
+#include "framework/pipeline/ccd_pipeline.hpp"
+#include "framework/util/error.hpp"
+#include "framework/util/memory.hpp"
+#include "strategies/registry.hpp"
+
+namespace ccdlab {
+namespace {
+
+/// Runs f; an Error it throws gets `call` in front of its message (the API names the call in every message).
+template <class F>
+auto named(std::string_view call, F&& f) {
+  try {
+    return f();
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", call, e.what()));
+  }
+}
+
+/// A strategy choice as the API's "name:key=value,…" text.
+std::string spec_of(const StrategyChoice& c) {
+  std::string spec = c.name;
+  char sep = ':';
+  for (const auto& [key, value] : c.params.all()) {
+    spec += sep + key + '=';
+    std::visit([&spec](const auto& v) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(v)>, bool>) spec += v ? "true" : "false";
+      else spec += fmt::format("{}", v);
+    }, value);
+    sep = ',';
+  }
+  return spec;
+}
+
+/// Options → the experiment config's strategy fields, validated as a YAML file's are.
+ExperimentConfig config_of(const Options& o) {
+  const Registries reg = builtin_registries();
+  ExperimentConfig c;
+  if (!is_kdop_k(o.k)) fail("Options::k: expected one of {}, got {}", kKdopKs, o.k);
+  if (!is_bvh_width(o.width)) fail("Options::width: expected {}, got {}", kBvhWidths, o.width);
+  if (o.threads < 1 || o.threads > kMaxThreads) fail("Options::threads: expected 1 to {}, got {}", kMaxThreads, o.threads);
+  c.k = o.k, c.width = o.width, c.threads = o.threads, c.normal_cones = o.normal_cones;
+  c.hierarchy = parse_strategy_spec(o.hierarchy, "Options::hierarchy = ", "hierarchy", reg.builders, "median");
+  c.scheduler = parse_strategy_spec(o.scheduler, "Options::scheduler = ", "scheduler", reg.schedulers, "sequential");
+  c.tester = parse_strategy_spec(o.tester, "Options::tester = ", "tester", reg.testers, "float");
+  if (o.narrow != "batched" && o.narrow != "scalar") fail("Options::narrow: expected batched or scalar, got '{}'", o.narrow);
+  c.narrow.mode = parse_narrow_mode(o.narrow);
+  if (o.representative != "fixed" && o.representative != "first_free")
+    fail("Options::representative: expected fixed or first_free, got '{}'", o.representative);
+  c.narrow.representative = parse_representative_rule(o.representative);
+  c.memory_limit = o.memory_limit;
+  c.memory_limit_bytes = parse_memory_size(o.memory_limit, "Options::memory_limit");
+  return c;
+}
+
+Positions positions_of(std::span<const Point> x, const char* name) {
+  Positions p(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    p[i] = Vec3(x[i][0], x[i][1], x[i][2]);
+    if (!p[i].allFinite()) fail("{}[{}] = ({}, {}, {}) is not finite", name, i, x[i][0], x[i][1], x[i][2]);
+  }
+  return p;
+}
+
+}  // namespace
+
+MeshFile read_mesh(const std::filesystem::path& path) {
+  return named("ccdlab::read_mesh", [&] {
+    const MeshData m = read_mesh(path.string());
+    MeshFile out;
+    out.positions.reserve(m.positions.size());
+    for (const Vec3& p : m.positions) out.positions.push_back({p.x(), p.y(), p.z()});
+    out.faces.assign(m.faces.begin(), m.faces.end());
+    return out;
+  });
+}
+
+Options Options::from_yaml(std::string_view yaml, std::string_view source) {
+  const std::string where(source);
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(yaml));
+  } catch (const YAML::ParserException& e) {
+    fail("{}:{}: YAML syntax error: {}", where, e.mark.line + 1, e.msg);
+  }
+  if (root.IsNull()) return Options{};
+  if (!root.IsMap()) fail("{}: expected a mapping of option keys (scheduler: …, threads: …)", where);
+  const YamlReader r(where, {});
+  r.check_keys(root, "", {"bv", "hierarchy", "scheduler", "threads", "tester", "narrow", "normal_cones", "memory_limit"});
+  ExperimentConfig c;
+  try {
+    read_strategy_section(r, root, builtin_registries(), c);
+  } catch (const YAML::Exception& e) {
+    fail("{}:{}: {}", where, e.mark.line + 1, e.msg);
+  }
+  Options o;
+  o.k = c.k, o.width = c.width, o.threads = c.threads, o.normal_cones = c.normal_cones;
+  o.hierarchy = spec_of(c.hierarchy), o.scheduler = spec_of(c.scheduler), o.tester = spec_of(c.tester);
+  o.narrow = c.narrow.mode == NarrowMode::scalar ? "scalar" : "batched";
+  o.representative = c.narrow.representative == RepresentativeRule::first_free ? "first_free" : "fixed";
+  o.memory_limit = c.memory_limit;
+  return o;
+}
+
+struct Detector::Impl {
+  ExperimentConfig config;
+  std::vector<Face> faces;
+  Index vertices = 0;  // fixed once the pipeline exists
+  std::optional<TriMesh> mesh;
+  std::unique_ptr<CcdPipeline> pipeline;
+
+  /// Builds the mesh (which validates the faces) and the pipeline; no bodies: one self-colliding mesh.
+  void start(Index vertex_count, std::vector<ccdlab::Body> bodies) {
+    vertices = vertex_count;
+    mesh.emplace(vertex_count, faces);
+    if (bodies.empty()) bodies = single_cloth_body(*mesh);
+    pipeline = std::make_unique<CcdPipeline>(*mesh, std::move(bodies), make_strategies(config, builtin_registries()));
+  }
+};
+
+Detector::Detector(std::span<const Triangle> faces, const Options& options) : impl_(std::make_unique<Impl>()) {
+  named("ccdlab::Detector", [&] {
+    impl_->config = config_of(options);
+    impl_->faces.reserve(faces.size());
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      for (const int v : faces[f])
+        if (v < 0) fail("faces[{}] = ({}, {}, {}): a negative vertex index", f, faces[f][0], faces[f][1], faces[f][2]);
+      impl_->faces.push_back({faces[f][0], faces[f][1], faces[f][2]});
+    }
+  });
+}
+
+Detector::Detector(std::span<const Detector::Body> bodies, const Options& options) : impl_(std::make_unique<Impl>()) {
+  named("ccdlab::Detector", [&] {
+    impl_->config = config_of(options);
+    if (bodies.empty()) fail("no bodies");
+    std::vector<ccdlab::Body> ranges;
+    Index vertex_begin = 0;
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      const Detector::Body& body = bodies[b];
+      const std::string name = body.name.empty() ? fmt::format("bodies[{}]", b) : body.name;
+      if (body.vertices < 3) fail("{}: vertices = {}: expected at least 3", name, body.vertices);
+      ccdlab::Body range;
+      range.name = name;
+      range.kind = body.obstacle ? BodyKind::obstacle : BodyKind::cloth;
+      range.self_collision = body.self_collision;
+      range.vertex_begin = vertex_begin, range.vertex_end = vertex_begin + body.vertices;
+      range.face_begin = Index(impl_->faces.size());
+      for (std::size_t f = 0; f < body.faces.size(); ++f) {
+        const Triangle& t = body.faces[f];
+        for (const int v : t)
+          if (v < 0 || v >= body.vertices)
+            fail("{}: faces[{}] = ({}, {}, {}): vertex index {} out of range [0, {})", name, f, t[0], t[1], t[2], v, body.vertices);
+        impl_->faces.push_back({vertex_begin + t[0], vertex_begin + t[1], vertex_begin + t[2]});
+      }
+      range.face_end = Index(impl_->faces.size());
+      ranges.push_back(range);
+      vertex_begin = range.vertex_end;
+    }
+    impl_->start(vertex_begin, std::move(ranges));
+  });
+}
+
+Detector::~Detector() = default;
+Detector::Detector(Detector&&) noexcept = default;
+Detector& Detector::operator=(Detector&&) noexcept = default;
+
+Detector::Contacts Detector::step(std::span<const Point> x0, std::span<const Point> x1) {
+  return named("ccdlab::Detector::step", [&] {
+    Impl& d = *impl_;
+    if (x0.size() != x1.size()) fail("x0 has {} positions, x1 has {}", x0.size(), x1.size());
+    if (!d.pipeline) d.start(Index(x0.size()), {});  // validates the faces against the vertex count (TriMesh)
+    if (x0.size() != std::size_t(d.vertices))
+      fail("{} positions, but this detector's mesh has {} vertices (fixed by its first step or its bodies)", x0.size(), d.vertices);
+    const Positions p0 = positions_of(x0, "x0"), p1 = positions_of(x1, "x1");
+    const StepResult r = d.pipeline->step(p0, p1);
+    Contacts out;
+    for (const ccdlab::Contact& c : r.contacts) {
+      const Vec3 n = contact_normal(c, p0, p1);
+      Detector::Contact k{{c.vertices[0], c.vertices[1], c.vertices[2], c.vertices[3]}, c.toi, c.coords, {n.x(), n.y(), n.z()}};
+      (c.kind == ContactKind::vf ? out.vf : out.ee).push_back(k);
+    }
+    return out;
+  });
+}
+
+std::string Detector::resolved_options() const {
+  nlohmann::json j = to_json(impl_->config);
+  for (const char* key : {"name", "scene", "output", "restructure"}) j.erase(key);
+  return to_yaml(j);
+}
+
+}  // namespace ccdlab

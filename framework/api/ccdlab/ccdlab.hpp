@@ -1,0 +1,111 @@
+#pragma once
+// ccdlab's C++ API: continuous collision detection between triangles moving linearly over a time step, for
+// one deforming mesh or several bodies (cloth and obstacles). Guide and example: docs/embedding.md, examples/.
+//
+//   ccdlab::Detector detector(faces, ccdlab::Options::from_yaml("scheduler: phc\nthreads: 4"));
+//   ccdlab::Detector::Contacts c = detector.step(x0, x1);  // every VF / EE contact of the step
+//
+// The topology is fixed when the Detector is made; its BVH is built on the first step and refit on every later
+// one. The API never prints and never exits the process: every failure is a ccdlab::Error (ccdlab/error.hpp)
+// whose message names the call, and the file, line and field where there is one. Only the standard library
+// appears here; everything else stays inside the library. (Contact, Contacts and Body are Detector's own
+// types: the framework inside has types of those names in namespace ccdlab.)
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ccdlab/error.hpp"
+
+namespace ccdlab {
+
+using Point = std::array<double, 3>;
+using Triangle = std::array<int, 3>;  ///< vertex indices, counter-clockwise seen from the front
+
+/// A mesh as read from one .ply or .obj file (validated: finite coordinates, indices in range).
+struct MeshFile {
+  std::vector<Point> positions;
+  std::vector<Triangle> faces;
+};
+
+/// Reads an .obj or .ply file (ascii or binary PLY; polygons fan-triangulated). Throws Error naming the file and
+/// the line (text) or element (binary) on any malformed input.
+MeshFile read_mesh(const std::filesystem::path& path);
+
+/// How a Detector works: the keys of an experiment's strategy section (docs/config.md), each a plain field.
+/// Strategy fields take a name or "name:key=value,…" (e.g. "conservative:delta=1e-9"); they are checked against
+/// the registries when a Detector is made, with the same messages as a YAML file.
+struct Options {
+  int k = 18;                            ///< bv.k: the k-DOP, 6 / 14 / 18 / 26
+  int width = 4;                         ///< bv.width: 2 (binary BVTT) or 4 (wide, SIMD)
+  std::string hierarchy = "median";      ///< the BVH builder
+  std::string scheduler = "sequential";  ///< sequential, phc, front, static (or embree)
+  int threads = 1;
+  std::string tester = "float";          ///< float, filtered, conservative, exact
+  std::string narrow = "batched";        ///< narrow.mode: batched or scalar
+  std::string representative = "fixed";  ///< narrow.representative: fixed or first_free
+  bool normal_cones = false;
+  std::string memory_limit = "80%";      ///< "8GiB", "60%" (of this machine) or "none"
+
+  /// Options from YAML text with the keys of an experiment's strategy section — bv {k, width}, hierarchy,
+  /// scheduler, threads, tester, narrow {mode, representative}, normal_cones, memory_limit — and no others.
+  /// `source` names the text in errors ("<source>:line: key: expected …, got …").
+  static Options from_yaml(std::string_view yaml, std::string_view source = "ccdlab::Options::from_yaml");
+};
+
+class Detector {
+ public:
+  /// One body of a scene: its own faces (indices into its own vertices) and vertex count. A cloth is tested against
+  /// every body and, with self_collision, against itself; an obstacle only against cloth.
+  struct Body {
+    std::vector<Triangle> faces;
+    int vertices = 0;
+    bool obstacle = false;
+    bool self_collision = true;
+    std::string name;  ///< used in error messages
+  };
+
+  /// A contact: the four vertex ids (VF: the vertex, then the face's three; EE: edge a's two, then edge b's), the
+  /// earliest time of contact in [0, 1] (a lower bound for `conservative`), the contact's coordinates (VF:
+  /// barycentric weights of the face's 2nd and 3rd vertex; EE: parameters along edge a and edge b) and the unit
+  /// normal at that time (VF: the face's, (f1 − f0) × (f2 − f0); EE: edge a × edge b; zero where the face is
+  /// degenerate or the edges parallel then).
+  struct Contact {
+    std::array<int, 4> vertices;
+    double toi;
+    std::array<double, 2> coords;
+    Point normal;
+  };
+
+  /// A step's contacts, each list in the order of its features' ids: the same lists, in the same order, for every
+  /// scheduler and thread count.
+  struct Contacts {
+    std::vector<Contact> vf;
+    std::vector<Contact> ee;
+  };
+
+  /// One self-colliding mesh. The vertex count is fixed by the first step (it must cover every face index).
+  explicit Detector(std::span<const Triangle> faces, const Options& options = {});
+  /// Several bodies; a step's positions are the bodies' vertices one after the other, in this order.
+  explicit Detector(std::span<const Body> bodies, const Options& options = {});
+  ~Detector();
+  Detector(Detector&&) noexcept;
+  Detector& operator=(Detector&&) noexcept;
+
+  /// Every contact while each vertex moves linearly from x0 to x1. x0 and x1 hold the same number of finite
+  /// positions, the vertex count of the first step.
+  [[nodiscard]] Contacts step(std::span<const Point> x0, std::span<const Point> x1);
+
+  /// The options in effect, every default filled in (the resolved strategy parameters as YAML).
+  [[nodiscard]] std::string resolved_options() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace ccdlab

@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# The installed package, used as a stranger would (docs/embedding.md): `cmake --install` into a fresh prefix,
+# no build-tree path in what was installed, examples/step_contacts copied outside the repository and built
+# against it with find_package(ccdlab), its contacts equal to the installed CLI's (`ccdlab step --contacts`:
+# the same pairs, times, coordinates and normals) on the shared real steps, or on a small built-in pair of
+# frames where ../shared/data is absent; and the installed Python module imports and answers.
+# Usage: tests/install/consumer.sh [BUILD_DIR]   (default: build, the release preset's)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+repo="$PWD"
+build="$(cd "${1:-build}" && pwd)"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+prefix="$work/prefix"
+
+cmake --install "$build" --prefix "$prefix" >/dev/null
+if grep -rlF -e "$repo" -e "$build" "$prefix/lib/cmake" "$prefix/include"; then
+  echo "FAIL: the installed package names build-tree paths (files above)"; exit 1
+fi
+
+cp -r examples/step_contacts "$work/src"
+cmake -S "$work/src" -B "$work/build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$work/build" >/dev/null
+consumer="$work/build/step_contacts"
+
+same_contacts() {  # CSV of the consumer vs the CLI's: the same rows (as numbers), in any order
+  /usr/bin/python3 - "$1" "$2" <<'PY'
+import csv, sys
+def rows(path):
+    with open(path) as f:
+        return sorted((r[0], *map(int, r[1:5]), *map(float, r[5:])) for r in list(csv.reader(f))[1:])
+a, b = rows(sys.argv[1]), rows(sys.argv[2])
+if a != b:
+    sys.exit(f"FAIL: {len(a)} contacts from the consumer, {len(b)} from the CLI, or different values")
+print(f"  {len(a)} contacts, identical")
+PY
+}
+
+data="../shared/data/meshes"
+pairs=()
+if [ -d "$data" ]; then
+  pairs=("$data/rod-twist/3036.ply $data/rod-twist/3037.ply" "$data/cloth-funnel/227.ply $data/cloth-funnel/228.ply"
+         "$data/n-body-simulation/balls16_18.ply $data/n-body-simulation/balls16_19.ply")
+else
+  echo "../shared/data not found: the consumer is compared with the CLI on a built-in pair of frames only"
+fi
+# Built in: a vertex falling through a triangle, and an edge crossing another.
+cat > "$work/a.obj" <<'OBJ'
+v 0 0 0
+v 1 0 0
+v 0 1 0
+v 0.2 0.2 1
+v 0.2 0.2 2
+v 1 1 1
+v 3 0 0.5
+v 3 1 0.5
+v 4 0 0.5
+OBJ
+sed -e 's/^v 0.2 0.2 1$/v 0.2 0.2 -1/' -e 's/^v 3 0 0.5$/v 3 0 -0.5/' "$work/a.obj" > "$work/b.obj"
+printf 'f 1 2 3\nf 4 5 6\nf 7 8 9\n' | tee -a "$work/a.obj" >> "$work/b.obj"
+pairs+=("$work/a.obj $work/b.obj")
+
+for pair in "${pairs[@]}"; do
+  read -r t0 t1 <<<"$pair"
+  echo "$(basename "$t0") → $(basename "$t1"):"
+  for options in "" "{scheduler: phc, threads: 2}"; do
+    "$consumer" "$t0" "$t1" "$options" > "$work/api.csv" 2>/dev/null
+    "$prefix/bin/ccdlab" step "$t0" "$t1" --contacts "$work/cli.csv" \
+      $( [ -n "$options" ] && echo "--scheduler phc --threads 2" ) >/dev/null
+    same_contacts "$work/api.csv" "$work/cli.csv"
+  done
+done
+[ "$(wc -l < "$work/api.csv")" -gt 1 ] || { echo "FAIL: no contact on the built-in frames"; exit 1; }
+
+# Errors reach the consumer as ccdlab::Error, naming the call and the file.
+if "$consumer" "$work/missing.ply" "$work/b.obj" 2> "$work/err.txt"; then echo "FAIL: a missing file was accepted"; exit 1; fi
+grep -q "ccdlab::read_mesh: .*missing.ply" "$work/err.txt" || { echo "FAIL: unexpected message: $(cat "$work/err.txt")"; exit 1; }
+if "$consumer" "$work/a.obj" "$work/b.obj" "{sheduler: phc}" 2> "$work/err.txt"; then echo "FAIL: a mistyped option was accepted"; exit 1; fi
+grep -q "OPTIONS_YAML:1: .*sheduler" "$work/err.txt" || { echo "FAIL: unexpected message: $(cat "$work/err.txt")"; exit 1; }
+
+PYTHONPATH="$prefix/lib/python3/dist-packages" /usr/bin/python3 -c '
+import ccdlab, numpy as np
+x0 = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0.2, 0.2, 1], [0.2, 0.2, 2], [1, 1, 1]], float)
+x1 = x0.copy(); x1[3, 2] = -1
+r = ccdlab.step(x0, x1, np.array([[0, 1, 2], [3, 4, 5]]))
+assert len(r["vf"]) >= 1, r
+print("  the installed Python module:", len(r["vf"]), "VF contact(s)")'
+echo "consumer test passed"
