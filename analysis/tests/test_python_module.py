@@ -57,6 +57,34 @@ def test_options_are_the_yaml_strategies_and_errors_name_them():
         ccdlab.step(x0, bad, faces)
 
 
+def test_faces_must_hold_integers_and_every_message_names_its_call():
+    x0, x1, faces = falling_vertex()
+    with pytest.raises(ccdlab.Error, match=r"^ccdlab.step: faces\[0\]\[0\] = 0.5 is not an integer vertex index"):
+        ccdlab.step(x0, x1, np.array([[0.5, 1, 2], [3, 4, 5]]))
+    assert ccdlab.step(x0, x1, faces.astype(float))["vf"].tolist() == [[3, 0, 1, 2]]  # integral floats are fine
+    with pytest.raises(ccdlab.Error, match=r"^ccdlab.step: faces must be an F×3 array of integer vertex indices"):
+        ccdlab.step(x0, x1, np.array([["a", "b", "c"]]))
+    with pytest.raises(ccdlab.Error, match=r"^ccdlab.step: faces: face 1: degenerate"):
+        ccdlab.step(x0, x1, np.array([[0, 1, 2], [3, 4, 4]]))
+    with pytest.raises(ccdlab.Error, match=r"^ccdlab.step: x1 has 5 vertices, x0 has 6"):
+        ccdlab.step(x0, x1[:5], faces)
+    with pytest.raises(ccdlab.Error, match=r"^ccdlab.sequence: frames\[1\] has 5 vertices"):
+        ccdlab.sequence([x0, x1[:5]], faces)
+    with pytest.raises(ccdlab.Error, match=r"^ccdlab.earliest_toi: unknown option 'kk'"):
+        ccdlab.earliest_toi(x0, x1, faces, kk=1)
+    with pytest.raises(ccdlab.Error, match=r"^ccdlab.earliest_toi: faces\[0\]\[1\] = 1.5"):
+        ccdlab.earliest_toi(x0, x1, np.array([[0, 1.5, 2]]))
+
+
+def test_earliest_toi_is_the_steps_earliest_contact():
+    x0, x1, faces = falling_vertex()
+    for tester in ("float", "exact", "conservative"):
+        r = ccdlab.step(x0, x1, faces, tester=tester)
+        t = ccdlab.earliest_toi(x0, x1, faces, tester=tester, scheduler="phc", threads=2)
+        assert t == min(r["vf_toi"].tolist() + r["ee_toi"].tolist()), tester
+    assert ccdlab.earliest_toi(x0, x0, faces) == 1.0  # no motion, no contact
+
+
 def test_sequence_refits_one_hierarchy_over_the_frames():
     x0, x1, faces = falling_vertex()
     mid = x0.copy()

@@ -1,6 +1,7 @@
 // `ccdlab step T0 T1 [--k K] [--scheduler S] [--threads N] [--tester NAME[:key=value,…]] [--narrow MODE]
-//  [--representative RULE] [--contacts FILE.csv] [--json]`:
-// one CCD step between two mesh files of the same topology (one self-colliding body).
+//  [--representative RULE] [--contacts FILE.csv] [--json] [--earliest]`:
+// one CCD step between two mesh files of the same topology (one self-colliding body); with --earliest, only
+// its earliest time of contact.
 
 
 #include "experiments/cli/commands.hpp"
@@ -53,9 +54,13 @@ int step_command(const StepOptions& o) {
     fail("{}: {}", o.mesh_t0, e.what());
   }
   CcdPipeline pipeline(mesh, single_cloth_body(mesh), std::move(s));
+  if (o.earliest && !o.contacts_csv.empty())
+    fail("--contacts with --earliest: the earliest-time query skips pairs and has no full contact list; drop one");
   OutputFile contacts;  // opened before the step: an unwritable path is reported before the work
   if (!o.contacts_csv.empty()) contacts = OutputFile(o.contacts_csv, "--contacts");
-  StepResult r = pipeline.step(m0.positions, m1.positions);
+  StepResult r;
+  const double earliest = o.earliest ? pipeline.earliest_toi(m0.positions, m1.positions, &r) : 1.0;
+  if (!o.earliest) r = pipeline.step(m0.positions, m1.positions);
   const std::uint64_t hash = contact_set_hash(r.contacts);
 
   if (!o.contacts_csv.empty()) {
@@ -65,7 +70,8 @@ int step_command(const StepOptions& o) {
   }
   if (o.json) {
     nlohmann::json j = step_json(r);
-    j["hash"] = fmt::format("{:016x}", hash);
+    if (o.earliest) j["earliest_toi"] = earliest;
+    else j["hash"] = fmt::format("{:016x}", hash);
     j["triangles"] = mesh.num_faces();
     j["vertices"] = mesh.num_vertices();
     j["orphans"] = {{"vf", pipeline.orphans().vf.size()}, {"ee", pipeline.orphans().ee.size()}};
@@ -81,7 +87,11 @@ int step_command(const StepOptions& o) {
                o.representative, plane_filter_target());
     print_table_header(stdout);
     print_table_row(stdout, "0", r);
-    fmt::print("\ncontacts vf={} ee={}; hash {:016x}\n", r.counters.contacts_vf, r.counters.contacts_ee, hash);
+    if (o.earliest)
+      fmt::print("\nearliest time of contact: {} ({} of the contacts found before the cut)\n", earliest,
+                 r.counters.contacts_vf + r.counters.contacts_ee);
+    else
+      fmt::print("\ncontacts vf={} ee={}; hash {:016x}\n", r.counters.contacts_vf, r.counters.contacts_ee, hash);
   }
   return 0;
 }

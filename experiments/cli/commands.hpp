@@ -66,6 +66,7 @@ struct StepOptions {
   std::string memory_limit = "80%";
   std::string contacts_csv;
   bool json = false;
+  bool earliest = false;  ///< only the earliest time of contact (CcdPipeline::earliest_toi)
 };
 int step_command(const StepOptions& o);
 

@@ -80,6 +80,8 @@ int main(int argc, char** argv) {
                        "predicted need it streams candidates to the narrow phase)")->capture_default_str();
   step_cmd->add_option("--contacts", step.contacts_csv, "write contacts to this CSV (kind,a,b,c,d,toi,u,v,nx,ny,nz)");
   step_cmd->add_flag("--json", step.json, "print JSON instead of the table");
+  step_cmd->add_flag("--earliest", step.earliest, "only the earliest time of contact (1 when none; JSON: earliest_toi), "
+                     "skipping the pairs that cannot beat the best time found");
 
   BenchOptions bench;
   bool bench_no_progress = false;

@@ -6,6 +6,7 @@
 //   r["vf"]   (N×4 int: v, f0, f1, f2)     r["vf_toi"] (N)   r["vf_coords"] (N×2: weights of f1, f2)
 //   r["ee"]   (M×4 int: a0, a1, b0, b1)   r["ee_toi"] (M)   r["ee_coords"] (M×2: parameters on a, b)
 //   r["vf_normal"], r["ee_normal"] (unit normals at the time of contact), r["hash"], r["counters"], r["ms"]
+//   t = ccdlab.earliest_toi(x0, x1, faces, tester="exact")   (the step's earliest time of contact, 1.0 if none)
 //   rows = ccdlab.validate(["../shared/data/ccd-queries", "hard-cases"], testers=["float", "exact"])
 //
 // Rows are sorted by feature identity, like the CLI's contacts CSV (same vertex ids, same order).
@@ -14,6 +15,9 @@
 #include <pybind11/stl.h>
 
 #include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <string_view>
 
 #include "ccdlab/build_info.hpp"
 #include "framework/config/strategy_spec.hpp"
@@ -31,39 +35,56 @@ namespace ccdlab {
 namespace {
 
 using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
-using Triangles = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+using Triangles = py::array;  // any numeric dtype: integers, or floats that hold integers (checked, never cut)
 
-Positions to_positions(const Points& a, const char* name) {
-  if (a.ndim() != 2 || a.shape(1) != 3) fail("ccdlab.step: {} must be an N×3 array of positions, got shape {}", name,
+// Every message starts with the call it comes from (`call`: "ccdlab.step", "ccdlab.sequence", …).
+Positions to_positions(const Points& a, const char* call, const std::string& name) {
+  if (a.ndim() != 2 || a.shape(1) != 3) fail("{}: {} must be an N×3 array of positions, got shape {}", call, name,
                                              a.ndim() == 2 ? fmt::format("{}×{}", a.shape(0), a.shape(1)) : "of another rank");
   Positions p(std::size_t(a.shape(0)));
   const auto r = a.unchecked<2>();
   for (py::ssize_t i = 0; i < a.shape(0); ++i) {
     p[std::size_t(i)] = Vec3(r(i, 0), r(i, 1), r(i, 2));
-    if (!p[std::size_t(i)].allFinite()) fail("ccdlab.step: {}[{}] is not finite", name, i);
+    if (!p[std::size_t(i)].allFinite()) fail("{}: {}[{}] is not finite", call, name, i);
   }
   return p;
 }
 
-std::vector<Face> to_faces(const Triangles& a, std::size_t vertices) {
-  if (a.ndim() != 2 || a.shape(1) != 3) fail("ccdlab.step: faces must be an F×3 array of vertex indices");
+std::vector<Face> to_faces(const Triangles& a, std::size_t vertices, const char* call) {
+  const char kind = a.dtype().kind();
+  if (kind != 'i' && kind != 'u' && kind != 'f')
+    fail("{}: faces must be an F×3 array of integer vertex indices, got dtype {}", call, std::string(py::str(a.dtype())));
+  if (a.ndim() != 2 || a.shape(1) != 3) fail("{}: faces must be an F×3 array of vertex indices", call);
+  // As doubles: every int64 index this library can hold (< 2^31) is exact, and a float that is not an integer shows.
+  const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
   std::vector<Face> f(std::size_t(a.shape(0)));
-  const auto r = a.unchecked<2>();
+  const auto r = d.unchecked<2>();
   for (py::ssize_t i = 0; i < a.shape(0); ++i)
     for (int j = 0; j < 3; ++j) {
-      const std::int64_t v = r(i, j);
-      if (v < 0 || std::uint64_t(v) >= vertices)
-        fail("ccdlab.step: faces[{}][{}] = {} is not a vertex index (0…{})", i, j, v, vertices - 1);
+      const double v = r(i, j);
+      if (v != std::floor(v)) fail("{}: faces[{}][{}] = {} is not an integer vertex index", call, i, j, v);
+      if (v < 0 || v >= double(vertices))
+        fail("{}: faces[{}][{}] = {} is not a vertex index (0…{})", call, i, j, v, vertices - 1);
       f[std::size_t(i)][std::size_t(j)] = Index(v);
     }
   return f;
 }
 
+/// The mesh of a call: its faces checked against the vertex count, degenerate ones refused, named by the call.
+TriMesh to_mesh(std::size_t vertices, const Triangles& faces, const char* call) {
+  try {
+    return TriMesh(Index(vertices), to_faces(faces, vertices, call));
+  } catch (const Error& e) {
+    if (std::string_view(e.what()).starts_with(call)) throw;
+    fail("{}: faces: {}", call, e.what());
+  }
+}
+
 /// A strategy option: a name, "name:key=value,…", or a dict {"name": …, key: value}.
 template <class Product>
 StrategyChoice strategy_option(const py::handle& value, const std::string& key, const Registry<Product>& registry,
-                               const std::string& default_name) {
-  const std::string where = "ccdlab.step " + key + "=";
+                               const std::string& default_name, const char* call) {
+  const std::string where = std::string(call) + " " + key + "=";
   if (py::isinstance<py::str>(value)) return parse_strategy_spec(value.cast<std::string>(), where, key, registry, default_name);
   if (py::isinstance<py::dict>(value)) {
     YAML::Node node(YAML::NodeType::Map);
@@ -75,7 +96,7 @@ StrategyChoice strategy_option(const py::handle& value, const std::string& key, 
   fail("{}: expected a name, 'name:key=value,…' or a dict, got {}", where, py::str(value.get_type()).cast<std::string>());
 }
 
-PipelineStrategies strategies_from(const py::kwargs& options) {
+PipelineStrategies strategies_from(const py::kwargs& options, const char* call) {
   PipelineStrategies s;
   StrategyChoice builder{"median", builder_registry().find("median")->defaults()};
   StrategyChoice scheduler{"sequential", {}};
@@ -84,19 +105,19 @@ PipelineStrategies strategies_from(const py::kwargs& options) {
     const std::string key = py::str(key_handle);
     if (key == "k") {
       s.k = value.cast<int>();
-      if (!is_kdop_k(s.k)) fail("ccdlab.step: k: expected one of {}, got {}", kKdopKs, s.k);
+      if (!is_kdop_k(s.k)) fail("{}: k: expected one of {}, got {}", call, kKdopKs, s.k);
     } else if (key == "width") {
       s.width = value.cast<int>();
-      if (!is_bvh_width(s.width)) fail("ccdlab.step: width: expected {}, got {}", kBvhWidths, s.width);
+      if (!is_bvh_width(s.width)) fail("{}: width: expected {}, got {}", call, kBvhWidths, s.width);
     } else if (key == "threads") {
       s.threads = value.cast<int>();
-      if (s.threads < 1 || s.threads > kMaxThreads) fail("ccdlab.step: threads: expected 1 to {}, got {}", kMaxThreads, s.threads);
+      if (s.threads < 1 || s.threads > kMaxThreads) fail("{}: threads: expected 1 to {}, got {}", call, kMaxThreads, s.threads);
     } else if (key == "hierarchy") {
-      builder = strategy_option(value, key, builder_registry(), "median");
+      builder = strategy_option(value, key, builder_registry(), "median", call);
     } else if (key == "scheduler") {
-      scheduler = strategy_option(value, key, scheduler_registry(), "sequential");
+      scheduler = strategy_option(value, key, scheduler_registry(), "sequential", call);
     } else if (key == "tester") {
-      tester = strategy_option(value, key, tester_registry(), "float");
+      tester = strategy_option(value, key, tester_registry(), "float", call);
     } else if (key == "narrow") {
       s.narrow.mode = parse_narrow_mode(value.cast<std::string>());
     } else if (key == "representative") {
@@ -104,8 +125,8 @@ PipelineStrategies strategies_from(const py::kwargs& options) {
     } else if (key == "normal_cones") {
       s.normal_cones = value.cast<bool>();
     } else {
-      fail("ccdlab.step: unknown option '{}' (k, width, hierarchy, scheduler, threads, tester, narrow, representative, "
-           "normal_cones)", key);
+      fail("{}: unknown option '{}' (k, width, hierarchy, scheduler, threads, tester, narrow, representative, "
+           "normal_cones)", call, key);
     }
   }
   s.builder = builder_registry().make(builder);
@@ -169,16 +190,19 @@ py::dict result_dict(const StepResult& r, const Positions& x0, const Positions& 
 }
 
 /// Runs the pipeline over consecutive frames (one BVH, refit each step, as `ccdlab run`).
-py::list run_frames(const std::vector<Points>& frames, const Triangles& faces, const py::kwargs& options) {
-  if (frames.size() < 2) fail("ccdlab.sequence: expected at least two frames, got {}", frames.size());
+py::list run_frames(const std::vector<Points>& frames, const Triangles& faces, const py::kwargs& options,
+                    const char* call = "ccdlab.sequence") {
+  if (frames.size() < 2) fail("{}: expected at least two frames, got {}", call, frames.size());
+  const bool two = std::string_view(call) != "ccdlab.sequence";  // step / earliest_toi: x0 and x1
   std::vector<Positions> x;
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    x.push_back(to_positions(frames[i], i == 0 ? "frames[0]" : "a frame"));
+    x.push_back(to_positions(frames[i], call, two ? fmt::format("x{}", i) : fmt::format("frames[{}]", i)));
     if (x.back().size() != x.front().size())
-      fail("ccdlab.sequence: frame {} has {} vertices, frame 0 has {}", i, x.back().size(), x.front().size());
+      fail("{}: {} has {} vertices, {} has {}", call, two ? "x1" : fmt::format("frames[{}]", i), x.back().size(),
+           two ? "x0" : "frames[0]", x.front().size());
   }
-  const TriMesh mesh(Index(x.front().size()), to_faces(faces, x.front().size()));
-  CcdPipeline pipeline(mesh, single_cloth_body(mesh), strategies_from(options));
+  const TriMesh mesh = to_mesh(x.front().size(), faces, call);
+  CcdPipeline pipeline(mesh, single_cloth_body(mesh), strategies_from(options, call));
   py::list out;
   for (std::size_t s = 0; s + 1 < x.size(); ++s) {
     StepResult r;
@@ -237,12 +261,29 @@ PYBIND11_MODULE(ccdlab, m) {
   m.def(
       "step",
       [](const Points& x0, const Points& x1, const Triangles& faces, const py::kwargs& options) {
-        return run_frames({x0, x1}, faces, options)[0].cast<py::dict>();
+        return run_frames({x0, x1}, faces, options, "ccdlab.step")[0].cast<py::dict>();
       },
       py::arg("x0"), py::arg("x1"), py::arg("faces"),
       "One CCD step of a self-colliding mesh from positions x0 (N×3) to x1 (N×3), faces F×3. Returns a dict: vf "
       "(v, f0, f1, f2) and ee (a0, a1, b0, b1) vertex ids, their toi, coords and normal, hash, counters, ms.");
-  m.def("sequence", &run_frames, py::arg("frames"), py::arg("faces"),
+  m.def(
+      "earliest_toi",
+      [](const Points& x0, const Points& x1, const Triangles& faces, const py::kwargs& options) {
+        const char* call = "ccdlab.earliest_toi";
+        const Positions p0 = to_positions(x0, call, "x0"), p1 = to_positions(x1, call, "x1");
+        if (p1.size() != p0.size()) fail("{}: x1 has {} vertices, x0 has {}", call, p1.size(), p0.size());
+        const TriMesh mesh = to_mesh(p0.size(), faces, call);
+        CcdPipeline pipeline(mesh, single_cloth_body(mesh), strategies_from(options, call));
+        py::gil_scoped_release release;
+        return pipeline.earliest_toi(p0, p1);
+      },
+      py::arg("x0"), py::arg("x1"), py::arg("faces"),
+      "The earliest time of contact in [0, 1] of one step (1.0 when none), without solving the pairs that cannot "
+      "beat the best time found so far; options as step(). Never later than the truth with tester='conservative' "
+      "or 'exact'.");
+  m.def("sequence", [](const std::vector<Points>& frames, const Triangles& faces, const py::kwargs& options) {
+          return run_frames(frames, faces, options);
+        }, py::arg("frames"), py::arg("faces"),
         "CCD over consecutive frames (a list of N×3 arrays) of one mesh: a list of step dicts (as step()).");
   m.def("validate", &validate, py::arg("paths"), py::arg("testers") = std::vector<std::string>{"float", "filtered", "conservative", "exact"},
         py::arg("repeat") = 1,

@@ -16,7 +16,7 @@ for s in "${which[@]}"; do
       ctest --preset asan  # the preset sets ASAN_OPTIONS, UBSAN_OPTIONS and the LeakSanitizer suppressions
       ;;
     tsan)
-      cmake --preset tsan >/dev/null
+      cmake --preset tsan -DCMAKE_COMPILE_WARNING_AS_ERROR="$([ "${CCDLAB_WERROR:-0}" = 1 ] && echo ON || echo OFF)" >/dev/null
       cmake --build --preset tsan -j "$(nproc)" --target ccdlab_tests
       # Archer needs TSan's runtime flag for OpenMP; the preset sets OMP_TOOL_LIBRARIES and TSAN_OPTIONS.
       ctest --preset tsan

@@ -5,6 +5,7 @@
 # CCDLAB_QUICK=1 stops after pytest (for a quick local check; CI runs everything).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+export CCDLAB_WERROR=1  # warnings are errors in every build below (experiments/scripts/build.sh)
 experiments/scripts/install-deps.sh
 experiments/scripts/build.sh release
 ctest --preset release

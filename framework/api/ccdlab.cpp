@@ -129,6 +129,14 @@ struct Detector::Impl {
     if (bodies.empty()) bodies = single_cloth_body(*mesh);
     pipeline = std::make_unique<CcdPipeline>(*mesh, std::move(bodies), make_strategies(config, builtin_registries()));
   }
+  /// Checks a step's positions (and fixes the vertex count on the first): the frames as the pipeline takes them.
+  std::pair<Positions, Positions> frames(std::span<const Point> x0, std::span<const Point> x1) {
+    if (x0.size() != x1.size()) fail("x0 has {} positions, x1 has {}", x0.size(), x1.size());
+    if (!pipeline) start(Index(x0.size()), {});  // validates the faces against the vertex count (TriMesh)
+    if (x0.size() != std::size_t(vertices))
+      fail("{} positions, but this detector's mesh has {} vertices (fixed by its first step or its bodies)", x0.size(), vertices);
+    return {positions_of(x0, "x0"), positions_of(x1, "x1")};
+  }
 };
 
 Detector::Detector(std::span<const Triangle> faces, const Options& options) : impl_(std::make_unique<Impl>()) {
@@ -180,13 +188,8 @@ Detector& Detector::operator=(Detector&&) noexcept = default;
 
 Detector::Contacts Detector::step(std::span<const Point> x0, std::span<const Point> x1) {
   return named("ccdlab::Detector::step", [&] {
-    Impl& d = *impl_;
-    if (x0.size() != x1.size()) fail("x0 has {} positions, x1 has {}", x0.size(), x1.size());
-    if (!d.pipeline) d.start(Index(x0.size()), {});  // validates the faces against the vertex count (TriMesh)
-    if (x0.size() != std::size_t(d.vertices))
-      fail("{} positions, but this detector's mesh has {} vertices (fixed by its first step or its bodies)", x0.size(), d.vertices);
-    const Positions p0 = positions_of(x0, "x0"), p1 = positions_of(x1, "x1");
-    const StepResult r = d.pipeline->step(p0, p1);
+    const auto [p0, p1] = impl_->frames(x0, x1);
+    const StepResult r = impl_->pipeline->step(p0, p1);
     Contacts out;
     for (const ccdlab::Contact& c : r.contacts) {
       const Vec3 n = contact_normal(c, p0, p1);
@@ -194,6 +197,13 @@ Detector::Contacts Detector::step(std::span<const Point> x0, std::span<const Poi
       (c.kind == ContactKind::vf ? out.vf : out.ee).push_back(k);
     }
     return out;
+  });
+}
+
+double Detector::earliest_toi(std::span<const Point> x0, std::span<const Point> x1) {
+  return named("ccdlab::Detector::earliest_toi", [&] {
+    const auto [p0, p1] = impl_->frames(x0, x1);
+    return impl_->pipeline->earliest_toi(p0, p1);
   });
 }
 

@@ -47,8 +47,8 @@ TriMesh::TriMesh(std::size_t num_vertices, std::vector<Face> faces) : faces_(std
       fail("face {}: degenerate, repeats a vertex ({} {} {})", f, t[0], t[1], t[2]);
   }
   // Duplicate faces (same vertex set in any order) make the ownership rule ill-defined: reject them.
-  {
-    std::vector<std::pair<Face, Index>> sorted(nf);
+  if (nf > 1) {
+    std::vector<std::pair<Face, Index>> sorted(std::size_t(nf), {Face{}, 0});
     for (Index f = 0; f < nf; ++f) {
       Face t = faces_[f];
       std::sort(t.begin(), t.end());

@@ -17,9 +17,13 @@ struct FeatureBatch {
   UninitializedVector<EdgeEdgePair> ee;
   /// Set when the gather ran stage 1's coarse test already and counted the pairs (NarrowPhase::gather_orphans).
   bool coarse_done = false;
+  /// Only for the earliest-time query (earliest_cut.hpp), after stage 3: per pair, VF's then EE's, the start of
+  /// its first open window, before which the tester cannot report it. Empty otherwise (read as 0).
+  std::vector<float> from;
   void clear() {
     vf.clear();
     ee.clear();
+    from.clear();
     coarse_done = false;
   }
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 
 #include "framework/narrow/proximity_filter.hpp"
@@ -59,11 +60,12 @@ void append_kept(std::span<const Pair> pairs, const std::uint8_t* keep, Uninitia
   out.resize(j);
 }
 
-/// VF flags first, then EE.
+/// VF flags first, then EE (and `from`, laid out the same, in one pass).
 void compact(FeatureBatch& batch, const std::vector<std::uint8_t>& keep) {
   const std::size_t nvf = batch.vf.size();
   compact(batch.vf, keep.data());
   compact(batch.ee, keep.data() + nvf);
+  if (!batch.from.empty()) compact(batch.from, keep.data());
 }
 
 }  // namespace
@@ -246,12 +248,18 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   c.split_ns += ns_since(t_split);
   // Stage 4 on the rows stage 3 kept, in place (same row numbers): the distance on their open windows.
   proximity_filter(plane, kept_vf, rows, scratch.open.data(), kSplitLevels, scratch.keep.data(), scratch.proximity);
+  if (earliest_) {  // each pair's earliest possible time: the start of its first open window
+    batch.from.resize(rows);
+    for (std::size_t i = 0; i < rows; ++i)
+      batch.from[i] = scratch.open[i] ? float(std::countr_zero(scratch.open[i])) / float(1 << kSplitLevels) : 1.0f;
+  }
   compact(batch, scratch.keep);
   c.proximity_culled += split_kept - batch.vf.size() - batch.ee.size();
   c.proximity_ns += ns_since(t_proximity);
 }
 
 void NarrowPhase::test(const FeatureBatch& batch, Contacts& out, NarrowCounters& c) const {
+  if (earliest_) return test_earliest(batch, out, c);
   const auto t = Clock::now();
   // In blocks, for testers with a batched kernel (PrimitiveTester::vertex_faces); a block's queries stay in L1.
   const auto in_blocks = [&](const auto& pairs, auto query_of, auto run, auto record) {
@@ -276,6 +284,42 @@ void NarrowPhase::test(const FeatureBatch& batch, Contacts& out, NarrowCounters&
   c.test_ns += ns_since(t);
 }
 
+void NarrowPhase::test_earliest(const FeatureBatch& batch, Contacts& out, NarrowCounters& c) const {
+  const auto t = Clock::now();
+  const std::size_t nvf = batch.vf.size(), n = nvf + batch.ee.size();
+  const auto from = [&](std::size_t i) { return batch.from.empty() ? 0.0f : batch.from[i]; };
+  // Pair i < nvf is VF pair i, else EE pair i − nvf; in order of earliest possible time.
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = std::uint32_t(i);
+  if (!batch.from.empty())
+    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return from(a) < from(b); });
+  constexpr std::size_t kBlock = 64;
+  std::array<VertexFaceQuery, kBlock> vq;
+  std::array<EdgeEdgeQuery, kBlock> eq;
+  std::array<std::uint32_t, kBlock> vi, ei;
+  std::array<CcdHit, kBlock> hits;
+  for (std::size_t k = 0; k < n;) {
+    // The next block: pairs that may still beat the best time, up to kBlock.
+    const double best = earliest_->best();
+    std::size_t nv = 0, ne = 0;
+    for (; k < n && nv + ne < kBlock && double(from(order[k])) <= best; ++k) {
+      const std::uint32_t i = order[k];
+      if (i < nvf) vi[nv] = i, vq[nv++] = vf_query(batch.vf[i].v, batch.vf[i].f);
+      else ei[ne] = i, eq[ne++] = ee_query(batch.ee[i - nvf].a, batch.ee[i - nvf].b);
+    }
+    if (nv + ne == 0) break;  // every later pair starts after the best time
+    tester_.vertex_faces({vq.data(), nv}, hits.data());
+    for (std::size_t j = 0; j < nv; ++j) {
+      record_vf(batch.vf[vi[j]], hits[j], out, c);
+    }
+    tester_.edge_edges({eq.data(), ne}, hits.data());
+    for (std::size_t j = 0; j < ne; ++j) {
+      record_ee(batch.ee[ei[j] - nvf], hits[j], out, c);
+    }
+  }
+  c.test_ns += ns_since(t);
+}
+
 void NarrowPhase::test_vf(Index v, Index f, Contacts& out, NarrowCounters& c) const {
   record_vf({v, f}, tester_.vertex_face(vf_query(v, f)), out, c);
 }
@@ -286,12 +330,14 @@ void NarrowPhase::test_ee(Index a, Index b, Contacts& out, NarrowCounters& c) co
 
 void NarrowPhase::record_vf(const VertexFacePair& p, const CcdHit& hit, Contacts& out, NarrowCounters& c) const {
   if (!counted(hit, c.vf_tests, c.contacts_vf, c)) return;
+  if (earliest_) earliest_->offer(hit.toi);
   const Face& t = mesh_.face(p.f);
   out.push_back(Contact{ContactKind::vf, p.v, p.f, {p.v, t[0], t[1], t[2]}, hit.toi, hit.coords});
 }
 
 void NarrowPhase::record_ee(const EdgeEdgePair& p, const CcdHit& hit, Contacts& out, NarrowCounters& c) const {
   if (!counted(hit, c.ee_tests, c.contacts_ee, c)) return;
+  if (earliest_) earliest_->offer(hit.toi);
   const Edge &ea = mesh_.edge(p.a), &eb = mesh_.edge(p.b);
   out.push_back(Contact{ContactKind::ee, p.a, p.b, {ea[0], ea[1], eb[0], eb[1]}, hit.toi, hit.coords});
 }

@@ -17,6 +17,7 @@
 #include <string_view>
 #include <vector>
 
+#include "framework/narrow/earliest_cut.hpp"
 #include "framework/narrow/feature_batch.hpp"
 #include "framework/narrow/feature_bounds.hpp"
 #include "framework/narrow/narrow_counters.hpp"
@@ -65,6 +66,10 @@ class NarrowPhase {
   /// `cull = false` skips the culling stages (brute-force references).
   void run(NarrowScratch& scratch, Contacts& out, NarrowCounters& c, bool cull = true) const;
 
+  /// The earliest-time query for the steps until reset to nullptr: the tests run in order of each pair's
+  /// earliest possible time and stop at pairs that cannot beat `cut` (earliest_cut.hpp); each hit lowers it.
+  void set_earliest(EarliestCut* cut) { earliest_ = cut; }
+
   [[nodiscard]] VertexFaceQuery vf_query(Index v, Index f) const;
   [[nodiscard]] EdgeEdgeQuery ee_query(Index a, Index b) const;
 
@@ -74,14 +79,16 @@ class NarrowPhase {
   void cull_kdop(NarrowScratch& scratch, NarrowCounters& c, bool coarse) const;
   void cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCounters& c) const;
   void test(const FeatureBatch& batch, Contacts& out, NarrowCounters& c) const;
+  void test_earliest(const FeatureBatch& batch, Contacts& out, NarrowCounters& c) const;
   void test_vf(Index v, Index f, Contacts& out, NarrowCounters& c) const;
   void test_ee(Index a, Index b, Contacts& out, NarrowCounters& c) const;
-  /// Counts a test and adds its contact when it hit.
+  /// Counts a test and adds its contact when it hit (and offers its time to the earliest-time cut, if set).
   void record_vf(const VertexFacePair& p, const CcdHit& hit, Contacts& out, NarrowCounters& c) const;
   void record_ee(const EdgeEdgePair& p, const CcdHit& hit, Contacts& out, NarrowCounters& c) const;
 
   const TriMesh& mesh_;
   const PrimitiveTester& tester_;
+  EarliestCut* earliest_ = nullptr;
   NarrowOptions options_;
   Representatives reps_;
   const FeatureBounds* bounds_ = nullptr;

@@ -1,5 +1,7 @@
 #include "framework/pipeline/ccd_pipeline.hpp"
 
+#include <algorithm>
+
 #include "framework/pipeline/phase_clock.hpp"
 #include "framework/pipeline/schedule_sim.hpp"
 #include "framework/util/error.hpp"
@@ -157,6 +159,18 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   result.memory.peak_rss_bytes = peak_rss_bytes();
   result.memory.page_faults = minor_page_faults() - faults_at_start;
   return result;
+}
+
+double CcdPipeline::earliest_toi(const Positions& x_t0, const Positions& x_t1, StepResult* result) {
+  EarliestCut cut;
+  narrow_.set_earliest(&cut);
+  struct Unset {  // the next step() is a whole one again, even when this one throws
+    NarrowPhase& narrow;
+    ~Unset() { narrow.set_earliest(nullptr); }
+  } unset{narrow_};
+  StepResult r = step(x_t0, x_t1);
+  if (result) *result = std::move(r);
+  return std::min(cut.best(), 1.0);
 }
 
 const TraversalOutput& CcdPipeline::last_candidates() const {

@@ -61,6 +61,10 @@ class CcdPipeline {
 
   /// Runs one step between two frames of the mesh (same vertex count as the topology).
   StepResult step(const Positions& x_t0, const Positions& x_t1);
+  /// The earliest time of contact of the step, 1.0 when there is none: the minimum over step()'s contacts,
+  /// found without testing the pairs that cannot beat the best time found so far (earliest_cut.hpp). `result`,
+  /// when given, receives the step's counters and timings; its contacts are those tested before the cut.
+  double earliest_toi(const Positions& x_t0, const Positions& x_t1, StepResult* result = nullptr);
 
   /// Tests of the ownership rule: record every feature pair considered into StepResult::tested_*.
   void set_record_tested_pairs(bool on) { narrow_driver_.record_tested(on); }

@@ -105,7 +105,7 @@ CCDLAB_WALK_TARGET void process_wide_front(const BvttView<BV>& v, const WideFron
       *gout++ = WideFrontGroup{ra, rb, std::uint16_t(cut), std::uint8_t(quiet), wait};
     }
     while (prune && gout[-1].quiet && gout[-1].prune_wait == 0) {
-      Index hx, hy;
+      Index hx = 0, hy = 0;  // set by whole_visit_of when it answers true
       if (!whole_visit_of(gout[-1], hx, hy)) {  // not one node pair's visit until its mask changes
         gout[-1].prune_wait = kNoPruneWhileSame;
         break;

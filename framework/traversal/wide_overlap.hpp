@@ -15,7 +15,18 @@
 #include <emmintrin.h>
 #endif
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+// GCC 12's AVX-512 headers make their "undefined" vectors by self-initialisation (`__m512 __Y = __Y;`), which
+// -Wmaybe-uninitialized reports once a kernel inlines them (GCC bug 105593, fixed in GCC 13): a false positive,
+// silenced for the lines of those headers only. This must be the translation unit's first <immintrin.h>.
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ < 13
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 #include <immintrin.h>
+#pragma GCC diagnostic pop
+#else
+#include <immintrin.h>
+#endif
 /// What the AVX-512 code is compiled for: Highway's AVX3 target (AVX-512 F/VL/DQ/BW and the AVX2 set below it).
 #define CCDLAB_AVX512_TARGET \
   __attribute__((target("avx2,bmi,bmi2,lzcnt,popcnt,avx512f,avx512vl,avx512dq,avx512bw")))

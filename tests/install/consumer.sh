@@ -3,7 +3,8 @@
 # no build-tree path in what was installed, examples/step_contacts copied outside the repository and built
 # against it with find_package(ccdlab), its contacts equal to the installed CLI's (`ccdlab step --contacts`:
 # the same pairs, times, coordinates and normals) on the shared real steps, or on a small built-in pair of
-# frames where ../shared/data is absent; and the installed Python module imports and answers.
+# frames where ../shared/data is absent; examples/mass_spring_cloth built the same way and kept collision-free
+# by earliest_toi; and the installed Python module imports and answers.
 # Usage: tests/install/consumer.sh [BUILD_DIR]   (default: build, the release preset's)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -77,6 +78,21 @@ if "$consumer" "$work/missing.ply" "$work/b.obj" 2> "$work/err.txt"; then echo "
 grep -q "ccdlab::read_mesh: .*missing.ply" "$work/err.txt" || { echo "FAIL: unexpected message: $(cat "$work/err.txt")"; exit 1; }
 if "$consumer" "$work/a.obj" "$work/b.obj" "{sheduler: phc}" 2> "$work/err.txt"; then echo "FAIL: a mistyped option was accepted"; exit 1; fi
 grep -q "OPTIONS_YAML:1: .*sheduler" "$work/err.txt" || { echo "FAIL: unexpected message: $(cat "$work/err.txt")"; exit 1; }
+
+# The mass-spring example: earliest_toi keeps every frame collision-free; the cloth reaches the floor, never below.
+cp -r examples/mass_spring_cloth "$work/cloth"
+cmake -S "$work/cloth" -B "$work/cloth/build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$work/cloth/build" >/dev/null
+"$work/cloth/build/mass_spring_cloth" > "$work/cloth.txt"
+/usr/bin/python3 - "$work/cloth.txt" <<'PY'
+import re, sys
+lines = open(sys.argv[1]).read().splitlines()
+z = [float(re.search(r"z = (\S+)", l).group(1)) for l in lines]
+t = [float(re.search(r"impact (\S+),", l).group(1)) for l in lines]
+if not z or min(z) < 0 or min(t) >= 1 or z[-1] > 0.05:
+    sys.exit("FAIL: mass_spring_cloth: " + " | ".join(lines[-3:]))
+print(f"  mass_spring_cloth: {len(lines)} reports, lowest point {min(z):.5f}, earliest impact {min(t):.4f}")
+PY
 
 PYTHONPATH="$prefix/lib/python3/dist-packages" /usr/bin/python3 -c '
 import ccdlab, numpy as np

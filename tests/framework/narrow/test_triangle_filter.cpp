@@ -95,7 +95,9 @@ TEST(TriangleFilter, NeverDropsACandidateWithAPairTheFloatTesterReports) {
       const bool keep = triangle_pair_keeps(f, g, r.x0.data(), r.x1.data(), reach);
       hits += hit;
       culled += !keep;
-      if (hit) ASSERT_TRUE(keep) << "eta " << eta << " candidate " << p.a / 2;
+      if (hit) {
+        ASSERT_TRUE(keep) << "eta " << eta << " candidate " << p.a / 2;
+      }
     }
     EXPECT_GT(hits, 1000);
     EXPECT_GT(culled, 2000);

@@ -1,0 +1,31 @@
+#pragma once
+// The earliest time of contact found so far in a step, shared by every thread of the narrow phase, for the
+// earliest-time-of-impact query (CcdPipeline::earliest_toi, `ccdlab step --earliest`, Detector::earliest_toi).
+//
+// Why the cut is exact: stage 3 leaves each surviving pair's open windows — sixteenths of the step where it
+// could not prove the features farther apart than the tester's reach — so the tester cannot report the pair
+// at a time before the start of its first open window, `from`. A pair is skipped only when from > best, a time
+// already reported by some pair; then its own time, if any, is later and the minimum is unchanged. The pair
+// holding the true earliest time has from ≤ that time ≤ best at every moment, so it is always tested: the answer
+// is the same for every thread count and order. Pairs without windows (testers that declare no reach, the
+// scalar mode) have from = 0 and are never skipped.
+#include <atomic>
+
+namespace ccdlab {
+
+class EarliestCut {
+ public:
+  /// The earliest time reported so far; above 1 while none is.
+  [[nodiscard]] double best() const { return best_.load(std::memory_order_relaxed); }
+  /// Lowers best to t when t is earlier.
+  void offer(double t) {
+    double seen = best_.load(std::memory_order_relaxed);
+    while (t < seen && !best_.compare_exchange_weak(seen, t, std::memory_order_relaxed)) {
+    }
+  }
+
+ private:
+  std::atomic<double> best_{2.0};
+};
+
+}  // namespace ccdlab

@@ -1,0 +1,101 @@
+// The earliest-time query (CcdPipeline::earliest_toi, earliest_cut.hpp): bit for bit the minimum time of the
+// full step's contacts, 1.0 when there are none, for every tester, scheduler, thread count and narrow mode; it
+// tests fewer pairs than the full step where contacts begin late; on the shared real steps too (skipped where
+// ../shared/data is absent).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "framework/mesh/mesh_io.hpp"
+#include "framework/pipeline/ccd_pipeline.hpp"
+#include "strategies/registry.hpp"
+#include "support/test_meshes.hpp"
+
+namespace ccdlab {
+namespace {
+
+PipelineStrategies strategies(const std::string& tester, const std::string& scheduler, int threads, NarrowMode mode) {
+  PipelineStrategies s = contact_strategies(18, scheduler, threads, 0.0);
+  s.tester = tester_registry().make({tester, tester_registry().find(tester)->defaults()});
+  s.narrow.mode = mode;
+  return s;
+}
+
+double min_toi(const StepResult& r) {
+  double t = 1.0;
+  for (const Contact& c : r.contacts) t = std::min(t, c.toi);
+  return t;
+}
+
+/// A folded grid over four steps: contacts at various times, and one still step without any.
+struct Sequence {
+  MeshData grid = test::grid(20, 20);
+  std::vector<Positions> frames;
+  Sequence() {
+    std::mt19937 rng(3);
+    for (int i = 0; i < 4; ++i) frames.push_back(test::crumple(grid.positions, rng, 0.02));
+    frames.push_back(frames.back());  // a step without motion
+  }
+};
+
+TEST(EarliestToi, EqualsTheFullStepsEarliestContactEverywhere) {
+  const Sequence seq;
+  const TriMesh mesh(Index(seq.grid.positions.size()), seq.grid.faces);
+  for (const char* tester : {"float", "filtered", "conservative", "exact"})
+    for (const NarrowMode mode : {NarrowMode::batched, NarrowMode::scalar})
+      for (const auto& [scheduler, threads] : {std::pair{"sequential", 1}, {"phc", 2}, {"front", 2}, {"static", 2}}) {
+        CcdPipeline full(mesh, single_cloth_body(mesh), strategies(tester, scheduler, threads, mode));
+        CcdPipeline earliest(mesh, single_cloth_body(mesh), strategies(tester, scheduler, threads, mode));
+        int with_contacts = 0;
+        for (std::size_t s = 0; s + 1 < seq.frames.size(); ++s) {
+          const StepResult r = full.step(seq.frames[s], seq.frames[s + 1]);
+          const double want = min_toi(r);
+          EXPECT_EQ(earliest.earliest_toi(seq.frames[s], seq.frames[s + 1]), want)
+              << tester << " " << to_string(mode) << " " << scheduler << " step " << s;
+          with_contacts += !r.contacts.empty();
+        }
+        EXPECT_GE(with_contacts, 2) << "the sequence must have contacts for the comparison to mean something";
+        // After an earliest-time query, a step is a whole one again.
+        EXPECT_EQ(earliest.step(seq.frames[0], seq.frames[1]).contacts.size(), full.step(seq.frames[0], seq.frames[1]).contacts.size());
+      }
+}
+
+TEST(EarliestToi, SkipsPairsThatCannotBeatTheBestTime) {
+  // Two sheets, the upper one tilted and falling through the lower: its points meet it from t = 0.5 (at x = 0) to
+  // t = 1 (x = 1), so the pairs' first open windows spread over the second half and the cut spares most tests.
+  const MeshData sheet = test::grid(16, 16);
+  MeshData both = test::concat(sheet, sheet);
+  Positions x0 = both.positions, x1 = both.positions;
+  const std::size_t n = sheet.positions.size();
+  for (std::size_t i = n; i < 2 * n; ++i) {
+    x0[i].z() = 0.1 + 0.1 * x0[i].x();
+    x1[i].z() = -0.1 + 0.1 * x1[i].x();
+  }
+  const TriMesh mesh(Index(x0.size()), both.faces);
+  CcdPipeline full(mesh, single_cloth_body(mesh), strategies("float", "sequential", 1, NarrowMode::batched));
+  CcdPipeline cut(mesh, single_cloth_body(mesh), strategies("float", "sequential", 1, NarrowMode::batched));
+  const StepResult all = full.step(x0, x1);
+  StepResult partial;
+  EXPECT_EQ(cut.earliest_toi(x0, x1, &partial), min_toi(all));
+  EXPECT_GT(min_toi(all), 0.45);
+  const auto tests = [](const StepResult& r) { return r.counters.vf_tests + r.counters.ee_tests; };
+  EXPECT_LT(2 * tests(partial), tests(all)) << tests(partial) << " of " << tests(all);
+}
+
+TEST(EarliestToi, SharedRealStepsAgreeWithTheirContacts) {
+  const std::string root = test::shared_data();
+  if (root.empty()) GTEST_SKIP() << "../shared/data not found: real steps skipped";
+  for (const auto& [a, b] : {std::pair{"rod-twist/3036.ply", "rod-twist/3037.ply"}, {"cloth-funnel/227.ply", "cloth-funnel/228.ply"}}) {
+    const MeshData m0 = read_mesh(root + "/meshes/" + a), m1 = read_mesh(root + "/meshes/" + b);
+    const TriMesh mesh(Index(m0.positions.size()), m0.faces);
+    for (const char* tester : {"float", "exact"}) {
+      CcdPipeline full(mesh, single_cloth_body(mesh), strategies(tester, "phc", 2, NarrowMode::batched));
+      CcdPipeline cut(mesh, single_cloth_body(mesh), strategies(tester, "phc", 2, NarrowMode::batched));
+      EXPECT_EQ(cut.earliest_toi(m0.positions, m1.positions), min_toi(full.step(m0.positions, m1.positions))) << a << " " << tester;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace ccdlab
