@@ -46,9 +46,9 @@ template <class BV, class Query>
 inline unsigned overlapping_lanes_plain(const WideBounds<BV>& w, const Query& q) {
   unsigned mask = 0;
   for (int j = 0; j < WideLayout::kWidth; ++j) {
-    bool apart = false;
-    for (int i = 0; i < BV::num_axes; ++i) apart |= (w.lo[i][j] > q.max(i)) | (q.min(i) > w.hi[i][j]);
-    mask |= unsigned(!apart) << j;
+    unsigned apart = 0;  // every axis tested, no branch: `|` on 0/1 values, not `||`
+    for (int i = 0; i < BV::num_axes; ++i) apart |= unsigned(w.lo[i][j] > q.max(i)) | unsigned(q.min(i) > w.hi[i][j]);
+    mask |= unsigned(apart == 0) << j;
   }
   return mask;
 }
