@@ -178,7 +178,7 @@ void BM_FloatTesterEdgeEdge(benchmark::State& state) {
 BENCHMARK(BM_FloatTesterEdgeEdge);
 
 // `float` on queries like the narrow phase's survivors: each crosses the other's plane during the step (the cubic
-// has a root to refine), some 15–20% touching. One query at a time against the batched root search
+// has a root to refine), a minority touching. One query at a time against the batched root search
 // (float_roots.hpp). Args: 0 VF, 1 EE; 0 one at a time, 1 batched. ns per query = the time / 4096.
 void BM_FloatTesterSurvivors(benchmark::State& state) {
   std::mt19937 rng(3);

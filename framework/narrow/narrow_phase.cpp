@@ -309,13 +309,9 @@ void NarrowPhase::test_earliest(const FeatureBatch& batch, Contacts& out, Narrow
     }
     if (nv + ne == 0) break;  // every later pair starts after the best time
     tester_.vertex_faces({vq.data(), nv}, hits.data());
-    for (std::size_t j = 0; j < nv; ++j) {
-      record_vf(batch.vf[vi[j]], hits[j], out, c);
-    }
+    for (std::size_t j = 0; j < nv; ++j) record_vf(batch.vf[vi[j]], hits[j], out, c);  // each hit lowers the best
     tester_.edge_edges({eq.data(), ne}, hits.data());
-    for (std::size_t j = 0; j < ne; ++j) {
-      record_ee(batch.ee[ei[j] - nvf], hits[j], out, c);
-    }
+    for (std::size_t j = 0; j < ne; ++j) record_ee(batch.ee[ei[j] - nvf], hits[j], out, c);
   }
   c.test_ns += ns_since(t);
 }
