@@ -4,7 +4,6 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <cmath>
 #include <optional>
 #include <utility>
 
