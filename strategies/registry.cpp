@@ -76,15 +76,18 @@ const TesterRegistry& tester_registry() {
            }});
     r.add({"filtered", "certified Bernstein non-penetration filter (Tang 2010), then float; zero thickness", {},
            [](const ParamValues&) -> std::unique_ptr<PrimitiveTester> { return std::make_unique<FilteredTester>(); }});
-    r.add({"conservative", "interval bisection in time with certified Bernstein bounds: never misses; zero thickness",
+    r.add({"conservative", "certified bisection: never misses; in time with Bernstein bounds, or with thickness eta > 0 "
+           "in time and on the features (minimum separation)",
            {{"delta", ParamType::real, ConservativeTester::Params{}.delta, "relative tolerance: undecided once features move < delta*size in a window", 0, 1},
             {"fallback", ParamType::string, std::string("hit"), "what an undecided query becomes: hit or exact", 0, 0, {"hit", "exact"}},
             {"max_windows", ParamType::integer, (long long)ConservativeTester::Params{}.max_windows, "time windows per query before the fallback", 1, 1 << 20},
-            {"toi_tolerance", ParamType::real, ConservativeTester::Params{}.toi_tolerance, "width of the time window reported for a hit", 0, 1}},
+            {"toi_tolerance", ParamType::real, ConservativeTester::Params{}.toi_tolerance, "width of the time window reported for a hit", 0, 1},
+            {"thickness", ParamType::real, ConservativeTester::Params{}.thickness, "contact distance eta (scene units): every pair that comes within it", 0, 1e300},
+            {"max_boxes", ParamType::integer, (long long)ConservativeTester::Params{}.max_boxes, "with thickness: boxes of (t, u, v) per query before the fallback", 1, 1 << 24}},
            [](const ParamValues& p) -> std::unique_ptr<PrimitiveTester> {
              return std::make_unique<ConservativeTester>(ConservativeTester::Params{
                  p.real("delta"), ConservativeTester::parse_fallback(p.string("fallback")), int(p.integer("max_windows")),
-                 p.real("toi_tolerance")});
+                 p.real("toi_tolerance"), p.real("thickness"), int(p.integer("max_boxes"))});
            }});
     r.add({"exact", "reference: exact algebraic roots and signs on GMP integers (CGAL); zero thickness",
            {{"prefilter", ParamType::boolean, ExactTester::Params{}.prefilter, "decide certainly separated queries by interval bounds first", 0, 0},

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "framework/util/error.hpp"
 
@@ -38,6 +39,17 @@ CcdHit with_coords(CcdHit h, const Query& q) {
 }
 
 }  // namespace
+
+ConservativeTester::ConservativeTester(Params p) : params_(p) {
+  if (!(params_.thickness >= 0) || !std::isfinite(params_.thickness))
+    fail("tester.thickness: expected a finite distance >= 0, got {}", params_.thickness);
+  if (params_.thickness > 0 && params_.fallback == Fallback::exact)
+    fail("tester.fallback: 'exact' decides contact at zero distance only; with thickness {} use fallback 'hit'", params_.thickness);
+}
+
+separation::Params ConservativeTester::separation_params() const {
+  return {params_.thickness, params_.delta, params_.max_boxes, params_.toi_tolerance};
+}
 
 ConservativeTester::Fallback ConservativeTester::parse_fallback(const std::string& name) {
   if (name == "hit") return Fallback::hit;
@@ -123,7 +135,11 @@ CcdHit ConservativeTester::search(const Query& q) const {
   return decided ? result : CcdHit{};
 }
 
-CcdHit ConservativeTester::vertex_face(const VertexFaceQuery& q) const { return search(q); }
-CcdHit ConservativeTester::edge_edge(const EdgeEdgeQuery& q) const { return search(q); }
+CcdHit ConservativeTester::vertex_face(const VertexFaceQuery& q) const {
+  return params_.thickness > 0 ? separation::vertex_face(q, separation_params()) : search(q);
+}
+CcdHit ConservativeTester::edge_edge(const EdgeEdgeQuery& q) const {
+  return params_.thickness > 0 ? separation::edge_edge(q, separation_params()) : search(q);
+}
 
 }  // namespace ccdlab

@@ -1,5 +1,7 @@
 #pragma once
-// `conservative`: never misses a collision (zero thickness, linear motion). Every rounding error is
+// `conservative`: never misses a collision (linear motion). At thickness η > 0 it reports every pair that comes
+// within η, by a search over time and the features' points (separation_search.hpp); what follows is the
+// zero-thickness search. Every rounding error is
 // accounted for (forward error bounds and interval arithmetic, interval_ccd.hpp). The roots of the coplanarity
 // cubic are isolated first (or, for coplanar motion, the whole step is taken at once); those windows are
 // bisected in time and each is classified by certified Bernstein bounds:
@@ -14,6 +16,7 @@
 // inside / crossing conditions are exact polynomial signs, so near misses farther than ≈δ·L are resolved.
 #include "strategies/testers/exact_tester.hpp"
 #include "strategies/testers/interval_ccd.hpp"
+#include "strategies/testers/separation_search.hpp"
 
 namespace ccdlab {
 
@@ -25,11 +28,13 @@ class ConservativeTester final : public PrimitiveTester {
     Fallback fallback = Fallback::hit;
     int max_windows = 512;        ///< bound on windows per query (bounds the tail); beyond it: fallback
     double toi_tolerance = 1e-6;  ///< width of the final time window of a hit
+    double thickness = 0;         ///< η ≥ 0: report every pair that comes within η (fallback `hit` only)
+    int max_boxes = 4096;         ///< with thickness: boxes of (t, u, v) per query before the fallback
   };
   ConservativeTester() = default;
-  explicit ConservativeTester(Params p) : params_(p) {}
+  explicit ConservativeTester(Params p);
   [[nodiscard]] std::string_view name() const override { return "conservative"; }
-  [[nodiscard]] double thickness() const override { return 0.0; }
+  [[nodiscard]] double thickness() const override { return params_.thickness; }
   [[nodiscard]] CcdHit vertex_face(const VertexFaceQuery& q) const override;
   [[nodiscard]] CcdHit edge_edge(const EdgeEdgeQuery& q) const override;
 
@@ -41,6 +46,8 @@ class ConservativeTester final : public PrimitiveTester {
   /// The start of the earliest sub-window of [tl, th], toi_tolerance wide, where f may vanish: a lower bound
   /// on any contact time in [tl, th] (all of them need coplanarity).
   [[nodiscard]] double earliest_root(const interval_ccd::RelativeMotion& m, double tl, double th) const;
+
+  [[nodiscard]] separation::Params separation_params() const;
 
   Params params_{};
   ExactTester exact_{};

@@ -226,20 +226,57 @@ TEST(AccuracyLadder, ConservativeNeverMissesWhatExactFindsOnUniformRandomQueries
   std::cout << "[ uniform random: 1500 ] collisions " << hits << ", float wrong " << float_wrong << "\n";
 }
 
+TEST(AccuracyLadder, ConservativeWithASeparationFindsWhatExactAndFloatFind) {
+  // At thickness η, `conservative` reports every pair that comes within η: all of exact's contacts (distance 0),
+  // never later, and every pair `float` reports at η (it checks the distance only at its candidate times).
+  const ExactTester exact;
+  std::size_t beyond_float = 0;
+  for (const double eta : {1e-8, 1e-4, 1e-2}) {
+    ConservativeTester::Params p;
+    p.thickness = eta;
+    const ConservativeTester conservative(p);
+    const FloatTester flt({eta});
+    for (const ContactKind kind : {ContactKind::vf, ContactKind::ee})
+      for (const double jitter : {0.0, 1e-6, 1e-3}) {
+        const QuerySet s = random_near_contacts(kind, 150, jitter, 17 + unsigned(jitter * 1e3));
+        for (std::size_t i = 0; i < s.size(); ++i) {
+          const auto d = decide(exact, s, i);
+          const CcdHit c = run(conservative, s, i), f = run(flt, s, i);
+          const std::string what = std::string(to_string(kind)) + " eta " + std::to_string(eta) + " jitter " + std::to_string(jitter) + " #" + std::to_string(i);
+          if (d.hit) {
+            ASSERT_TRUE(c.hit) << what;
+            EXPECT_LE(c.toi, d.toi_hi) << what;
+          }
+          if (f.hit) {
+            ASSERT_TRUE(c.hit) << what;
+          }
+          beyond_float += c.hit && !f.hit;
+        }
+      }
+  }
+  std::cout << "[ separation ] pairs within eta that float does not report: " << beyond_float << "\n";
+}
+
 TEST(AccuracyLadder, SharedQuerySetsExactIsRightConservativeNeverMisses) {
   const std::string root = test::shared_data();
   if (root.empty()) GTEST_SKIP() << "../shared/data not found: shared query sets skipped";
   const ExactTester exact;
   const ConservativeTester conservative;
+  ConservativeTester::Params p;
+  p.thickness = 1e-6;
+  const ConservativeTester separated(p);
   std::size_t total = 0;
   for (const auto& s : load_query_sets(root + "/ccd-queries")) {
     const auto outcomes_c = run_tester(conservative, s);
+    const auto outcomes_s = run_tester(separated, s);
     const auto outcomes_e = run_tester(exact, s);
     std::vector<ToiReference> ref;
     for (const auto& o : outcomes_e) ref.push_back({o.hit, o.toi, o.toi});
-    const SetScore e = score(s, "exact", outcomes_e, {}), c = score(s, "conservative", outcomes_c, ref);
+    const SetScore e = score(s, "exact", outcomes_e, {}), c = score(s, "conservative", outcomes_c, ref),
+                   d = score(s, "conservative eta", outcomes_s, ref);
     EXPECT_EQ(e.false_negatives + e.false_positives, 0u) << s.name;
     EXPECT_EQ(c.false_negatives, 0u) << s.name;
+    EXPECT_EQ(d.false_negatives, 0u) << s.name << " at thickness 1e-6";
     total += s.size();
   }
   EXPECT_GT(total, 17000u);
