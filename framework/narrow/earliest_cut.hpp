@@ -3,11 +3,12 @@
 // earliest-time-of-impact query (CcdPipeline::earliest_toi, `ccdlab step --earliest`, Detector::earliest_toi).
 //
 // Why the cut is exact: stage 3 leaves each surviving pair's open windows — sixteenths of the step where it
-// could not prove the features farther apart than the tester's reach — so the tester cannot report the pair
-// at a time before the start of its first open window, `from`. A pair is skipped only when from > best, a time
+// could not prove the features farther apart than the tester's reach — so no contact of the pair happens before
+// the start of its first open window, `from`, and a time the tester reports below it (a lower bound) is raised
+// to it in the full step as here (NarrowPhase::record_vf). A pair is skipped only when from > best, a time
 // already reported by some pair; then its own time, if any, is later and the minimum is unchanged. The pair
 // holding the true earliest time has from ≤ that time ≤ best at every moment, so it is always tested: the answer
-// is the same for every thread count and order. Pairs without windows (testers that declare no reach, the
+// is the same for every thread count and order. Pairs without windows (a tester without a reach, the
 // scalar mode) have from = 0 and are never skipped.
 #include <atomic>
 

@@ -17,8 +17,10 @@ struct FeatureBatch {
   UninitializedVector<EdgeEdgePair> ee;
   /// Set when the gather ran stage 1's coarse test already and counted the pairs (NarrowPhase::gather_orphans).
   bool coarse_done = false;
-  /// Only for the earliest-time query (earliest_cut.hpp), after stage 3: per pair, VF's then EE's, the start of
-  /// its first open window, before which the tester cannot report it. Empty otherwise (read as 0).
+  /// After stage 3 (batched mode, testers with a cull reach): per pair, VF's then EE's, the start of its first
+  /// open window. Before it the features were proven farther apart than the reach, so no contact the tester
+  /// reports can happen earlier: a time reported below it (a lower bound, `conservative`) is raised to it, and
+  /// the earliest-time query orders and cuts by it (earliest_cut.hpp). Empty otherwise (read as 0).
   std::vector<float> from;
   void clear() {
     vf.clear();

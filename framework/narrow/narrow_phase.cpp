@@ -248,7 +248,7 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   c.split_ns += ns_since(t_split);
   // Stage 4 on the rows stage 3 kept, in place (same row numbers): the distance on their open windows.
   proximity_filter(plane, kept_vf, rows, scratch.open.data(), kSplitLevels, scratch.keep.data(), scratch.proximity);
-  if (earliest_) {  // each pair's earliest possible time: the start of its first open window
+  {  // each pair's earliest possible time: the start of its first open window
     batch.from.resize(rows);
     for (std::size_t i = 0; i < rows; ++i)
       batch.from[i] = scratch.open[i] ? float(std::countr_zero(scratch.open[i])) / float(1 << kSplitLevels) : 1.0f;
@@ -262,6 +262,7 @@ void NarrowPhase::test(const FeatureBatch& batch, Contacts& out, NarrowCounters&
   if (earliest_) return test_earliest(batch, out, c);
   const auto t = Clock::now();
   // In blocks, for testers with a batched kernel (PrimitiveTester::vertex_faces); a block's queries stay in L1.
+  const auto from = [&](std::size_t i) { return batch.from.empty() ? 0.0 : double(batch.from[i]); };
   const auto in_blocks = [&](const auto& pairs, auto query_of, auto run, auto record) {
     constexpr std::size_t kBlock = 64;
     std::array<decltype(query_of(pairs[0])), kBlock> queries;
@@ -270,17 +271,18 @@ void NarrowPhase::test(const FeatureBatch& batch, Contacts& out, NarrowCounters&
       const std::size_t n = std::min(kBlock, pairs.size() - b);
       for (std::size_t i = 0; i < n; ++i) queries[i] = query_of(pairs[b + i]);
       run(std::span(queries.data(), n), hits.data());
-      for (std::size_t i = 0; i < n; ++i) record(pairs[b + i], hits[i]);
+      for (std::size_t i = 0; i < n; ++i) record(b + i, hits[i]);
     }
   };
+  const std::size_t nvf = batch.vf.size();
   in_blocks(
       batch.vf, [&](const VertexFacePair& p) { return vf_query(p.v, p.f); },
       [&](std::span<const VertexFaceQuery> q, CcdHit* h) { tester_.vertex_faces(q, h); },
-      [&](const VertexFacePair& p, const CcdHit& h) { record_vf(p, h, out, c); });
+      [&](std::size_t i, const CcdHit& h) { record_vf(batch.vf[i], h, from(i), out, c); });
   in_blocks(
       batch.ee, [&](const EdgeEdgePair& p) { return ee_query(p.a, p.b); },
       [&](std::span<const EdgeEdgeQuery> q, CcdHit* h) { tester_.edge_edges(q, h); },
-      [&](const EdgeEdgePair& p, const CcdHit& h) { record_ee(p, h, out, c); });
+      [&](std::size_t i, const CcdHit& h) { record_ee(batch.ee[i], h, from(nvf + i), out, c); });
   c.test_ns += ns_since(t);
 }
 
@@ -309,30 +311,32 @@ void NarrowPhase::test_earliest(const FeatureBatch& batch, Contacts& out, Narrow
     }
     if (nv + ne == 0) break;  // every later pair starts after the best time
     tester_.vertex_faces({vq.data(), nv}, hits.data());
-    for (std::size_t j = 0; j < nv; ++j) record_vf(batch.vf[vi[j]], hits[j], out, c);  // each hit lowers the best
+    for (std::size_t j = 0; j < nv; ++j) record_vf(batch.vf[vi[j]], hits[j], from(vi[j]), out, c);  // each hit lowers the best
     tester_.edge_edges({eq.data(), ne}, hits.data());
-    for (std::size_t j = 0; j < ne; ++j) record_ee(batch.ee[ei[j] - nvf], hits[j], out, c);
+    for (std::size_t j = 0; j < ne; ++j) record_ee(batch.ee[ei[j] - nvf], hits[j], from(ei[j]), out, c);
   }
   c.test_ns += ns_since(t);
 }
 
 void NarrowPhase::test_vf(Index v, Index f, Contacts& out, NarrowCounters& c) const {
-  record_vf({v, f}, tester_.vertex_face(vf_query(v, f)), out, c);
+  record_vf({v, f}, tester_.vertex_face(vf_query(v, f)), 0.0, out, c);
 }
 
 void NarrowPhase::test_ee(Index a, Index b, Contacts& out, NarrowCounters& c) const {
-  record_ee({a, b}, tester_.edge_edge(ee_query(a, b)), out, c);
+  record_ee({a, b}, tester_.edge_edge(ee_query(a, b)), 0.0, out, c);
 }
 
-void NarrowPhase::record_vf(const VertexFacePair& p, const CcdHit& hit, Contacts& out, NarrowCounters& c) const {
+void NarrowPhase::record_vf(const VertexFacePair& p, CcdHit hit, double from, Contacts& out, NarrowCounters& c) const {
   if (!counted(hit, c.vf_tests, c.contacts_vf, c)) return;
+  if (hit.toi < from) hit.toi = from, hit.coords = contact_coords(vf_query(p.v, p.f), from);
   if (earliest_) earliest_->offer(hit.toi);
   const Face& t = mesh_.face(p.f);
   out.push_back(Contact{ContactKind::vf, p.v, p.f, {p.v, t[0], t[1], t[2]}, hit.toi, hit.coords});
 }
 
-void NarrowPhase::record_ee(const EdgeEdgePair& p, const CcdHit& hit, Contacts& out, NarrowCounters& c) const {
+void NarrowPhase::record_ee(const EdgeEdgePair& p, CcdHit hit, double from, Contacts& out, NarrowCounters& c) const {
   if (!counted(hit, c.ee_tests, c.contacts_ee, c)) return;
+  if (hit.toi < from) hit.toi = from, hit.coords = contact_coords(ee_query(p.a, p.b), from);
   if (earliest_) earliest_->offer(hit.toi);
   const Edge &ea = mesh_.edge(p.a), &eb = mesh_.edge(p.b);
   out.push_back(Contact{ContactKind::ee, p.a, p.b, {ea[0], ea[1], eb[0], eb[1]}, hit.toi, hit.coords});

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
 
 #include "framework/util/error.hpp"
 
@@ -51,6 +52,15 @@ separation::Params ConservativeTester::separation_params() const {
   return {params_.thickness, params_.delta, params_.max_boxes, params_.toi_tolerance};
 }
 
+template <class Query>
+bool ConservativeTester::may_come_close(const Query& q, double L) const {
+  separation::Params p = separation_params();
+  p.thickness = std::max(2 * params_.delta, 0.5 * kReachFloor) * L;
+  if (!(p.thickness > 0)) return true;  // all eight points in one place
+  if constexpr (std::is_same_v<Query, VertexFaceQuery>) return separation::vertex_face(q, p).hit;
+  else return separation::edge_edge(q, p).hit;
+}
+
 ConservativeTester::Fallback ConservativeTester::parse_fallback(const std::string& name) {
   if (name == "hit") return Fallback::hit;
   if (name == "exact") return Fallback::exact;
@@ -75,7 +85,7 @@ CcdHit ConservativeTester::search(const Query& q) const {
       const ExactTester::Decision d = exact_.decide(q);
       h.hit = d.hit;
       h.toi = d.toi_lo;
-    } else {
+    } else if (may_come_close(q, m.extent)) {
       // Any contact needs f = 0, so the earliest window where f may vanish still bounds the time from below.
       h.hit = true;
       h.toi = earliest_root(m, tl, th);

@@ -11,9 +11,11 @@
 //
 // δ (`delta`) trades false hits for time: a window still unknown once the features move less than δ·L
 // within it (L = the query's bounding-box diagonal — δ is relative, so answers do not depend on the scale)
-// goes to the fallback: report a hit (never wrong for a collision, possibly a near miss within ≈δ·L), or
-// ask the `exact` tester. Unlike δ-inclusion methods (Tight-Inclusion), only time is bisected and the
-// inside / crossing conditions are exact polynomial signs, so near misses farther than ≈δ·L are resolved.
+// goes to the fallback: report a hit (never wrong for a collision, possibly a near miss), or ask the `exact`
+// tester. Unlike δ-inclusion methods (Tight-Inclusion), only time is bisected and the inside / crossing
+// conditions are exact polynomial signs, so near misses farther than ≈δ·L are resolved. Before a `hit`
+// fallback is reported, the separation search checks that the features come within 2δ·L at all: a pair proven
+// farther all step cannot touch and is a miss. That bounds what is ever reported, the tester's cull reach.
 #include "strategies/testers/exact_tester.hpp"
 #include "strategies/testers/interval_ccd.hpp"
 #include "strategies/testers/separation_search.hpp"
@@ -37,6 +39,12 @@ class ConservativeTester final : public PrimitiveTester {
   [[nodiscard]] double thickness() const override { return params_.thickness; }
   [[nodiscard]] CcdHit vertex_face(const VertexFaceQuery& q) const override;
   [[nodiscard]] CcdHit edge_edge(const EdgeEdgeQuery& q) const override;
+  /// A hit is a certified contact (distance ≤ η), or undecided with the features within η + 4δ·L (a box of the
+  /// separation search smaller than δ·L and within 2δ·L at zero thickness, or η at thickness η; its centre is
+  /// then within √3·δ·L more). The exception: a query that spends all of `max_boxes` is reported at an unknown
+  /// distance — the batched narrow phase may then have dropped, as farther than the reach, a pair the scalar
+  /// mode reports; never one that comes within η.
+  [[nodiscard]] std::optional<CullReach> cull_reach() const override { return CullReach{params_.thickness, 4 * params_.delta + kReachFloor}; }
 
   static Fallback parse_fallback(const std::string& name);
 
@@ -48,6 +56,11 @@ class ConservativeTester final : public PrimitiveTester {
   [[nodiscard]] double earliest_root(const interval_ccd::RelativeMotion& m, double tl, double th) const;
 
   [[nodiscard]] separation::Params separation_params() const;
+  /// Whether the features may come within 2δ·L during the step (false: proven farther, they cannot touch).
+  template <class Query>
+  [[nodiscard]] bool may_come_close(const Query& q, double L) const;
+  /// The least relative reach, for δ = 0.
+  static constexpr double kReachFloor = 0x1p-40;
 
   Params params_{};
   ExactTester exact_{};
