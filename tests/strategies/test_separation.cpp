@@ -8,6 +8,7 @@
 #include <iostream>
 #include <random>
 
+#include "framework/geometry/distance.hpp"
 #include "framework/util/error.hpp"
 #include "strategies/registry.hpp"
 #include "strategies/testers/conservative_tester.hpp"
@@ -153,6 +154,44 @@ TEST(SeparationSearch, TimeIsNeverLateAndWithinToleranceWhenCertified) {
     ASSERT_TRUE(h0.hit);
     EXPECT_EQ(h0.toi, 0.0);
   }
+}
+
+TEST(SeparationSearch, TiltingEdgeKeepsTheFirstTimeWhereAdvancementStalls) {
+  // Edge b sinks slowly towards edge a (the x axis) while tilting fast: its ends move much faster than its
+  // closest point, so conservative advancement stalls and the box search has to find the first time. The
+  // reference: the first of 10⁵ samples of the distance below η, refined by bisection (the distance falls
+  // steadily there).
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> h0(0.02, 0.1), sink(0.5, 1.5), tilt(0.3, 1.0), slide(-0.3, 0.3);
+  const double eta = 1e-3;
+  ConservativeTester::Params p;
+  p.thickness = eta;
+  const ConservativeTester t(p);
+  int checked = 0;
+  for (int k = 0; k < 100; ++k) {
+    const double z0 = h0(rng), z1 = z0 - sink(rng) * z0, tz = tilt(rng), sx = slide(rng);
+    const EdgeEdgeQuery q{{-1, 0, 0}, {1, 0, 0}, {sx, -1, z0 - tz}, {sx, 1, z0 + tz},
+                          {-1, 0, 0}, {1, 0, 0}, {-sx, -1, z1 + tz}, {-sx, 1, z1 - tz}};
+    auto distance = [&](double s) {
+      auto at = [s](const Vec3& a, const Vec3& b) -> Vec3 { return a + s * (b - a); };
+      return std::sqrt(closest_segment_segment(at(q.ea0_t0, q.ea0_t1), at(q.ea1_t0, q.ea1_t1), at(q.eb0_t0, q.eb0_t1),
+                                               at(q.eb1_t0, q.eb1_t1)).distance_sq);
+    };
+    int first = -1;
+    for (int i = 0; i <= 100000 && first < 0; ++i)
+      if (distance(i / 1e5) <= eta) first = i;
+    const CcdHit h = t.edge_edge(q);
+    ASSERT_EQ(h.hit, first >= 0) << k;
+    if (first <= 0) continue;
+    double lo = (first - 1) / 1e5, hi = first / 1e5;
+    for (int i = 0; i < 60; ++i) (distance(0.5 * (lo + hi)) <= eta ? hi : lo) = 0.5 * (lo + hi);
+    EXPECT_LE(h.toi, hi + 1e-9) << k;
+    if (h.route == TestRoute::main) {
+      EXPECT_GE(h.toi, lo - p.toi_tolerance - 1e-9) << k;
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 50);
 }
 
 TEST(SeparationSearch, ParallelEdgesSlidingAtTheDistanceAreDecided) {
