@@ -248,11 +248,10 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   c.split_ns += ns_since(t_split);
   // Stage 4 on the rows stage 3 kept, in place (same row numbers): the distance on their open windows.
   proximity_filter(plane, kept_vf, rows, scratch.open.data(), kSplitLevels, scratch.keep.data(), scratch.proximity);
-  {  // each pair's earliest possible time: the start of its first open window
-    batch.from.resize(rows);
-    for (std::size_t i = 0; i < rows; ++i)
-      batch.from[i] = scratch.open[i] ? float(std::countr_zero(scratch.open[i])) / float(1 << kSplitLevels) : 1.0f;
-  }
+  // Each pair's earliest possible time: the start of its first open window.
+  batch.from.resize(rows);
+  for (std::size_t i = 0; i < rows; ++i)
+    batch.from[i] = scratch.open[i] ? float(std::countr_zero(scratch.open[i])) / float(1 << kSplitLevels) : 1.0f;
   compact(batch, scratch.keep);
   c.proximity_culled += split_kept - batch.vf.size() - batch.ee.size();
   c.proximity_ns += ns_since(t_proximity);

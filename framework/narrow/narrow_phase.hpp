@@ -82,8 +82,8 @@ class NarrowPhase {
   void test_earliest(const FeatureBatch& batch, Contacts& out, NarrowCounters& c) const;
   void test_vf(Index v, Index f, Contacts& out, NarrowCounters& c) const;
   void test_ee(Index a, Index b, Contacts& out, NarrowCounters& c) const;
-  /// Counts a test and adds its contact when it hit (and offers its time to the earliest-time cut, if set).
-  /// Counts a test and keeps its contact, its time raised to `from` (FeatureBatch::from; 0 without one).
+  /// Counts a test and adds its contact when it hit, its time raised to `from` (FeatureBatch::from; 0 without
+  /// one), and offers that time to the earliest-time cut, if set.
   void record_vf(const VertexFacePair& p, CcdHit hit, double from, Contacts& out, NarrowCounters& c) const;
   void record_ee(const EdgeEdgePair& p, CcdHit hit, double from, Contacts& out, NarrowCounters& c) const;
 

@@ -1,10 +1,10 @@
 #pragma once
 // `conservative`: never misses a collision (linear motion). At thickness η > 0 it reports every pair that comes
-// within η, by a search over time and the features' points (separation_search.hpp); what follows is the
-// zero-thickness search. Every rounding error is
-// accounted for (forward error bounds and interval arithmetic, interval_ccd.hpp). The roots of the coplanarity
-// cubic are isolated first (or, for coplanar motion, the whole step is taken at once); those windows are
-// bisected in time and each is classified by certified Bernstein bounds:
+// within η, by a search over time and the features' points (separation_search.hpp). What follows is the
+// zero-thickness search. Every rounding error is accounted for (forward error bounds and interval arithmetic,
+// interval_ccd.hpp). The roots of the coplanarity cubic are isolated first (or, for coplanar motion, the whole
+// step is taken at once); those windows are bisected in time and each is classified by certified Bernstein
+// bounds:
 //   separated → dropped;  contact (proven root of f, features strictly inside) → hit;  unknown → bisected.
 // Windows are visited earliest first, so the first hit's window start is a lower bound on the time of
 // contact; the time is then narrowed to `toi_tolerance` with the (cheaper) coplanarity test alone.
