@@ -168,14 +168,17 @@ ExactTester::Decision decide_points(const std::array<Vec3, 4>& x0, const std::ar
 
 /// The decision of the interval classification of f's windows, when it reaches one (see the header).
 /// Narrows a window [a, b] that holds the earliest contact (no contact before a, classify(a, b) = contact) by
-/// bisection: the left half is dropped when f ≠ 0 on it (proven), kept when it holds a proven contact itself;
-/// stops at adjacent doubles or where neither can be proven (interval bounds near their rounding floor).
+/// bisection. The contact verdict proved the features inside (crossing) throughout [a, b], so its contact times
+/// are the roots of f there and only f's sign is examined: the left half is dropped when f ≠ 0 on it (proven),
+/// kept when f changes sign across it (a root, proven). Stops at adjacent doubles or where neither can be
+/// proven (interval bounds near their rounding floor).
 std::pair<double, double> narrow_contact(const interval_ccd::RelativeMotion& m, double a, double b) {
   while (true) {
     const double mid = 0.5 * (a + b);
     if (!(mid > a && mid < b)) return {a, b};
-    if (interval_ccd::classify(m, a, mid, true) == interval_ccd::Verdict::separated) a = mid;
-    else if (interval_ccd::classify(m, a, mid) == interval_ccd::Verdict::contact) b = mid;
+    const interval_ccd::Verdict left = interval_ccd::classify(m, a, mid, true);
+    if (left == interval_ccd::Verdict::separated) a = mid;
+    else if (left == interval_ccd::Verdict::contact) b = mid;
     else return {a, b};
   }
 }

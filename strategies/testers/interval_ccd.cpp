@@ -266,14 +266,14 @@ Verdict classify(const RelativeMotion& m, double tl, double th, bool coplanarity
   const QuadVecT<B> n = cross(Bv, C);
   const Poly<B, 3> f = dot(A, n);
   if (all_positive(f) || all_negative(f)) return Verdict::separated;
-  if (coplanarity_only) return Verdict::unknown;
-  const LinVec Ai = to_intervals(A), Bi = to_intervals(Bv), Ci = to_intervals(C);
-  if (boxes_separated(m, Ai, Bi, Ci)) return Verdict::separated;
-  const Poly<B, 4> u = dot(n, cross(Bv, A)), w = dot(n, cross(A, C)), nn = dot(n, n);
   // A root of f certainly lies in the window when f's end values (its first and last Bernstein coefficients)
   // have certain, opposite signs.
   const bool root = (f[0].certainly_negative() && f[3].certainly_positive()) ||
                     (f[0].certainly_positive() && f[3].certainly_negative());
+  if (coplanarity_only) return root ? Verdict::contact : Verdict::unknown;
+  const LinVec Ai = to_intervals(A), Bi = to_intervals(Bv), Ci = to_intervals(C);
+  if (boxes_separated(m, Ai, Bi, Ci)) return Verdict::separated;
+  const Poly<B, 4> u = dot(n, cross(Bv, A)), w = dot(n, cross(A, C)), nn = dot(n, n);
   if (!m.edge_edge) {
     const Poly<B, 4> r = nn - u - w;
     if (all_negative(u) || all_negative(w) || all_negative(r)) return Verdict::separated;

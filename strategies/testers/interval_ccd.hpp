@@ -52,8 +52,9 @@ enum class Verdict {
   unknown,    ///< neither could be proven at this window width
 };
 
-/// Classifies the window [tl, th]. With `coplanarity_only`, only the sign of f is examined (the caller
-/// already knows the features are inside for the whole window): separated or unknown.
+/// Classifies the window [tl, th]. With `coplanarity_only`, only the sign of f is examined, for a caller that
+/// already knows the features are inside (crossing) throughout the window: separated, contact (f's end values
+/// have certain, opposite signs: a root lies inside) or unknown.
 Verdict classify(const RelativeMotion& m, double tl, double th, bool coplanarity_only = false);
 
 /// Visits, earliest first, the sub-windows of [tl, th] at most `width` wide where f(t) may vanish (de Casteljau
