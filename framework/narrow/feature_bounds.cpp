@@ -13,10 +13,12 @@ void FeatureBounds::update(const Positions& x_t0, const Positions& x_t1, double 
                            PhaseTrace& trace) {
   const std::size_t n = x_t0.size();
   vertex_.resize(n);
-  // The float 26-DOPs, and the range of every axis per chunk for the coarse grid.
+  points_.resize(n);
+  // The float 26-DOPs, and the range of every axis per chunk for the coarse grid; the frames interleaved.
   std::vector<AxisRange> chunk_range((n + kChunk - 1) / kChunk);
   parallel_chunks(n, kChunk, threads, trace, [&](std::size_t b, std::size_t e, int) {
     detail::swept_vertex_dops(x_t0.data() + b, x_t1.data() + b, e - b, 0.5 * thickness, vertex_.data() + b);
+    interleave_frames(x_t0.data() + b, x_t1.data() + b, e - b, points_.data() + b);
     AxisRange r;
     for (std::size_t v = b; v < e; ++v) r.include(vertex_[v].min, vertex_[v].max);
     chunk_range[b / kChunk] = r;

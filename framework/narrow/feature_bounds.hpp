@@ -33,6 +33,7 @@
 
 #include "framework/geometry/kdop.hpp"
 #include "framework/mesh/tri_mesh.hpp"
+#include "framework/narrow/frame_points.hpp"
 #include "framework/primitive/feature_pairs.hpp"
 #include "framework/util/parallel.hpp"
 #include "framework/util/uninitialized_vector.hpp"
@@ -103,8 +104,12 @@ void quantize_dops(const PaddedDop* in, CoarseDop* out, std::size_t n, const flo
 
 class FeatureBounds {
  public:
-  /// Swept 26-DOP of every vertex between the two frames, inflated by thickness / 2 (float and coarse).
+  /// Swept 26-DOP of every vertex between the two frames, inflated by thickness / 2 (float and coarse); and the
+  /// two frames interleaved, as the staging kernels of stages 0 and 2 read them (frame_points.hpp).
   void update(const Positions& x_t0, const Positions& x_t1, double thickness, int threads, PhaseTrace& trace);
+
+  /// Vertex v at both ends of the step, v < the frames' size (update).
+  [[nodiscard]] const FramePoints* frame_points() const { return points_.data(); }
 
   /// The swept K-DOP of a face: the union of its three vertices' 26-DOPs, on K's axes. The hierarchy's leaves
   /// are these (point 2 above); 3 × 32 floats min/max and K selections, against 6 points × K/2 projections.
@@ -180,7 +185,7 @@ class FeatureBounds {
   void vf_keep_coarse(const TriMesh& mesh, std::span<const VertexFacePair> pairs, std::uint8_t* keep) const;
   void ee_keep_coarse(const TriMesh& mesh, std::span<const EdgeEdgePair> pairs, std::uint8_t* keep) const;
 
-  static constexpr std::size_t kBytesPerVertex = sizeof(PaddedDop) + sizeof(CoarseDop);
+  static constexpr std::size_t kBytesPerVertex = sizeof(PaddedDop) + sizeof(CoarseDop) + sizeof(FramePoints);
   [[nodiscard]] std::size_t memory_bytes() const { return vertex_.size() * kBytesPerVertex; }
 
  private:
@@ -200,6 +205,7 @@ class FeatureBounds {
 
   UninitializedVector<PaddedDop> vertex_;  // update() writes every entry: growing it zeroes nothing
   UninitializedVector<CoarseDop> coarse_;
+  UninitializedVector<FramePoints> points_;
 };
 
 }  // namespace ccdlab

@@ -101,7 +101,7 @@ void NarrowPhase::gather(std::span<const FacePair> candidates, NarrowScratch& sc
   }
   const auto t = Clock::now();
   scratch.keep.resize(candidates.size());
-  triangle_filter(candidates, mesh_.faces().data(), x_t0_->data(), x_t1_->data(), *reach, scratch.keep.data());
+  triangle_filter(candidates, mesh_.faces().data(), bounds_->frame_points(), *reach, scratch.keep.data());
   scratch.candidates.clear();
   append_kept(candidates, scratch.keep.data(), scratch.candidates);
   c.triangle_tested += candidates.size();
@@ -209,8 +209,8 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   if (n == 0) return;
   PlaneBatch& plane = scratch.plane;
   plane.resize(n);
-  stage_vf_rows(plane, 0, batch.vf, mesh_.faces().data(), x_t0_->data(), x_t1_->data());
-  stage_ee_rows(plane, nvf, batch.ee, mesh_.edges().data(), x_t0_->data(), x_t1_->data());
+  stage_vf_rows(plane, 0, batch.vf, mesh_.faces().data(), bounds_->frame_points());
+  stage_ee_rows(plane, nvf, batch.ee, mesh_.edges().data(), bounds_->frame_points());
   scratch.keep.resize(n);
   plane_filter(plane, reach, scratch.keep.data());
   std::size_t plane_kept = 0;

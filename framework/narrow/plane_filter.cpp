@@ -40,30 +40,29 @@ HWY_INLINE void RowPoints(const std::int32_t* pair, const std::int32_t* features
 
 /// One row, plain: the expressions PlaneBatch::set is given (one subtraction per double).
 template <bool kVf>
-HWY_INLINE void StageRowPlain(const std::int32_t* p, const double* x0, const double* x1, double* const* col,
-                              std::size_t i) {
+HWY_INLINE void StageRowPlain(const std::int32_t* p, const double* x01, double* const* col, std::size_t i) {
   for (int j = 0; j < 3; ++j) {
-    auto at = [&](const double* x, int role) { return x[3 * std::ptrdiff_t(p[role]) + j]; };
-    col[PlaneBatch::A0x + j][i] = at(x0, 1) - at(x0, 0);
-    col[PlaneBatch::A1x + j][i] = at(x1, 1) - at(x1, 0);
-    col[PlaneBatch::B0x + j][i] = at(x0, 2) - at(x0, 0);
-    col[PlaneBatch::B1x + j][i] = at(x1, 2) - at(x1, 0);
-    col[PlaneBatch::C0x + j][i] = at(x0, 3) - at(x0, kVf ? 0 : 1);
-    col[PlaneBatch::C1x + j][i] = at(x1, 3) - at(x1, kVf ? 0 : 1);
-    col[PlaneBatch::Dx + j][i] = at(x1, 0) - at(x0, 0);
+    auto at = [&](int frame, int role) { return x01[8 * std::ptrdiff_t(p[role]) + 4 * frame + j]; };
+    col[PlaneBatch::A0x + j][i] = at(0, 1) - at(0, 0);
+    col[PlaneBatch::A1x + j][i] = at(1, 1) - at(1, 0);
+    col[PlaneBatch::B0x + j][i] = at(0, 2) - at(0, 0);
+    col[PlaneBatch::B1x + j][i] = at(1, 2) - at(1, 0);
+    col[PlaneBatch::C0x + j][i] = at(0, 3) - at(0, kVf ? 0 : 1);
+    col[PlaneBatch::C1x + j][i] = at(1, 3) - at(1, kVf ? 0 : 1);
+    col[PlaneBatch::Dx + j][i] = at(1, 0) - at(0, 0);
   }
 }
 
 template <bool kVf>
-void StageRowsT(const std::int32_t* pairs, const std::int32_t* features, const double* x0, const double* x1,
-                std::size_t n, double* const* col) {
+void StageRowsT(const std::int32_t* pairs, const std::int32_t* features, const double* x01, std::size_t n,
+                double* const* col) {
   std::size_t i = 0;
 #if CCDLAB_POINT_LOADS_4
   const Points4Tag d4;
   using Xyz = Points4;
-  const auto load = [&](const double* x, const std::int32_t (&id)[4][4], int role) {
+  const auto load = [&](int frame, const std::int32_t (&id)[4][4], int role) {
     const std::int32_t ids[4] = {id[0][role], id[1][role], id[2][role], id[3][role]};
-    return LoadPoints4(x, ids);
+    return LoadFramePoints4(x01, frame, ids);
   };
   const auto store = [&](int c, const Xyz& p, const Xyz& q) {  // columns c, c + 1, c + 2 = p − q
     hn::StoreU(hn::Sub(p.x, q.x), d4, col[c] + i);
@@ -73,14 +72,14 @@ void StageRowsT(const std::int32_t* pairs, const std::int32_t* features, const d
   for (; i + 4 <= n; i += 4) {
     std::int32_t id[4][4];
     for (int k = 0; k < 4; ++k) RowPoints<kVf>(pairs + 2 * (i + std::size_t(k)), features, id[k]);
-    const Xyz o0 = load(x0, id, 0), o1 = load(x1, id, 0), a0 = load(x0, id, 1), a1 = load(x1, id, 1);
+    const Xyz o0 = load(0, id, 0), o1 = load(1, id, 0), a0 = load(0, id, 1), a1 = load(1, id, 1);
     store(PlaneBatch::A0x, a0, o0);
     store(PlaneBatch::A1x, a1, o1);
     store(PlaneBatch::Dx, o1, o0);
-    const Xyz b0 = load(x0, id, 2), b1 = load(x1, id, 2);
+    const Xyz b0 = load(0, id, 2), b1 = load(1, id, 2);
     store(PlaneBatch::B0x, b0, o0);
     store(PlaneBatch::B1x, b1, o1);
-    const Xyz c0 = load(x0, id, 3), c1 = load(x1, id, 3);
+    const Xyz c0 = load(0, id, 3), c1 = load(1, id, 3);
     store(PlaneBatch::C0x, c0, kVf ? o0 : a0);
     store(PlaneBatch::C1x, c1, kVf ? o1 : a1);
   }
@@ -88,13 +87,13 @@ void StageRowsT(const std::int32_t* pairs, const std::int32_t* features, const d
   for (; i < n; ++i) {
     std::int32_t id[4];
     RowPoints<kVf>(pairs + 2 * i, features, id);
-    StageRowPlain<kVf>(id, x0, x1, col, i);
+    StageRowPlain<kVf>(id, x01, col, i);
   }
 }
-void StageRows(const std::int32_t* pairs, const std::int32_t* features, const double* x0, const double* x1,
-               std::size_t n, double* const* col, bool vf) {
-  if (vf) StageRowsT<true>(pairs, features, x0, x1, n, col);
-  else StageRowsT<false>(pairs, features, x0, x1, n, col);
+void StageRows(const std::int32_t* pairs, const std::int32_t* features, const double* x01, std::size_t n,
+               double* const* col, bool vf) {
+  if (vf) StageRowsT<true>(pairs, features, x01, n, col);
+  else StageRowsT<false>(pairs, features, x01, n, col);
 }
 
 void PlaneFilter(const double* const* col, double* const* out, std::size_t n, double abs_reach, double rel_reach,
@@ -169,29 +168,28 @@ HWY_EXPORT(StageRows);
 
 namespace {
 void stage_rows(PlaneBatch& batch, std::size_t first, const std::int32_t* pairs, std::size_t n,
-                const std::int32_t* features, const Vec3* x_t0, const Vec3* x_t1, bool vf) {
-  static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Face) == 3 * sizeof(std::int32_t) &&
+                const std::int32_t* features, const FramePoints* points, bool vf) {
+  static_assert(sizeof(FramePoints) == 8 * sizeof(double) && sizeof(Face) == 3 * sizeof(std::int32_t) &&
                     sizeof(Edge) == 2 * sizeof(std::int32_t) && sizeof(VertexFacePair) == 2 * sizeof(std::int32_t) &&
                     sizeof(EdgeEdgePair) == 2 * sizeof(std::int32_t),
-                "StageRows reads coordinate j of point p at 3p + j, and ids as packed int32");
+                "StageRows reads coordinate j of point p in frame f at 8p + 4f + j, and ids as packed int32");
   if (n == 0) return;
   double* cols[PlaneBatch::kColumns];
   for (int c = 0; c < PlaneBatch::kColumns; ++c) cols[c] = batch.column(c) + first;
-  HWY_DYNAMIC_DISPATCH(StageRows)(pairs, features, reinterpret_cast<const double*>(x_t0),
-                                  reinterpret_cast<const double*>(x_t1), n, cols, vf);
+  HWY_DYNAMIC_DISPATCH(StageRows)(pairs, features, reinterpret_cast<const double*>(points), n, cols, vf);
 }
 }  // namespace
 
 void stage_vf_rows(PlaneBatch& batch, std::size_t first, std::span<const VertexFacePair> pairs, const Face* faces,
-                   const Vec3* x_t0, const Vec3* x_t1) {
+                   const FramePoints* points) {
   // Casts, not member access: an empty span's data() may be null.
   stage_rows(batch, first, reinterpret_cast<const std::int32_t*>(pairs.data()), pairs.size(),
-             reinterpret_cast<const std::int32_t*>(faces), x_t0, x_t1, true);
+             reinterpret_cast<const std::int32_t*>(faces), points, true);
 }
 void stage_ee_rows(PlaneBatch& batch, std::size_t first, std::span<const EdgeEdgePair> pairs, const Edge* edges,
-                   const Vec3* x_t0, const Vec3* x_t1) {
+                   const FramePoints* points) {
   stage_rows(batch, first, reinterpret_cast<const std::int32_t*>(pairs.data()), pairs.size(),
-             reinterpret_cast<const std::int32_t*>(edges), x_t0, x_t1, false);
+             reinterpret_cast<const std::int32_t*>(edges), points, false);
 }
 
 void PlaneBatch::resize(std::size_t n) {

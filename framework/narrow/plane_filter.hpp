@@ -23,6 +23,7 @@
 
 #include "framework/geometry/vec.hpp"
 #include "framework/mesh/tri_mesh.hpp"
+#include "framework/narrow/frame_points.hpp"
 #include "framework/primitive/feature_pairs.hpp"
 #include "framework/primitive/tester.hpp"
 #include "framework/util/uninitialized_vector.hpp"
@@ -69,14 +70,15 @@ class PlaneBatch {
 };
 
 /// Stage 2's staging: writes rows [first, first + pairs.size()) of `batch` (sized already) from the pairs'
-/// positions, in SIMD where the CPU has 256-bit vectors (four rows at a time, each point's coordinates loaded
-/// and transposed; the plain loop was bound by its ~90 instructions a row, not by memory). The same doubles as
+/// positions (`points`, the step's frames: frame_points.hpp), in SIMD where the CPU has 256-bit vectors (four
+/// rows at a time, each point's coordinates loaded and transposed; the plain loop was bound by its ~90
+/// instructions a row, not by memory). The same doubles as
 /// set() with, for VF (v, f): A = v − f0, B = f1 − f0, C = f2 − f0, D = f0(t1) − f0(t0); for EE (a, b):
 /// A = b0 − a0, B = a1 − a0, C = b1 − b0, D = a0(t1) − a0(t0) (A, B, C at t0 and t1).
 void stage_vf_rows(PlaneBatch& batch, std::size_t first, std::span<const VertexFacePair> pairs, const Face* faces,
-                   const Vec3* x_t0, const Vec3* x_t1);
+                   const FramePoints* points);
 void stage_ee_rows(PlaneBatch& batch, std::size_t first, std::span<const EdgeEdgePair> pairs, const Edge* edges,
-                   const Vec3* x_t0, const Vec3* x_t1);
+                   const FramePoints* points);
 
 /// keep[i] = 0 when pair i is proven to stay farther than the reach, 1 otherwise (keep has batch.size()
 /// entries); fills the batch's results. Runs on the best SIMD target of this CPU (or the one forced by hwy::SetSupportedTargetsForTest).

@@ -26,19 +26,16 @@ using Points4Tag = hn::Full256<double>;
 struct Points4 {
   hn::Vec<Points4Tag> x, y, z;
 };
-/// Points id[0..3] of x (coordinate j of point p at x[3p + j]): (x, y) and (y, z) of each point in two 128-bit
-/// loads inside its three doubles, then interleaved and joined.
-HWY_INLINE Points4 LoadPoints4(const double* x, const std::int32_t (&id)[4]) {
+/// Points id[0..3] of one frame of `x01` (FramePoints: coordinate j of point p in frame f at 8p + 4f + j): one
+/// aligned 256-bit load per point, then a 4×4 transpose.
+HWY_INLINE Points4 LoadFramePoints4(const double* x01, int frame, const std::int32_t (&id)[4]) {
   const hn::Full256<double> d4;
-  const hn::Full128<double> d2;
-  hn::Vec<decltype(d2)> xy[4], yz[4];
-  for (int k = 0; k < 4; ++k) {
-    const double* p = x + 3 * std::ptrdiff_t(id[k]);
-    xy[k] = hn::LoadU(d2, p), yz[k] = hn::LoadU(d2, p + 1);
-  }
-  return Points4{hn::Combine(d4, hn::InterleaveLower(d2, xy[2], xy[3]), hn::InterleaveLower(d2, xy[0], xy[1])),
-                 hn::Combine(d4, hn::InterleaveUpper(d2, xy[2], xy[3]), hn::InterleaveUpper(d2, xy[0], xy[1])),
-                 hn::Combine(d4, hn::InterleaveUpper(d2, yz[2], yz[3]), hn::InterleaveUpper(d2, yz[0], yz[1]))};
+  hn::Vec<decltype(d4)> r[4];
+  for (int k = 0; k < 4; ++k) r[k] = hn::Load(d4, x01 + 8 * std::ptrdiff_t(id[k]) + 4 * frame);
+  const auto xz01 = hn::InterleaveLower(d4, r[0], r[1]), yw01 = hn::InterleaveUpper(d4, r[0], r[1]);
+  const auto xz23 = hn::InterleaveLower(d4, r[2], r[3]), yw23 = hn::InterleaveUpper(d4, r[2], r[3]);
+  return Points4{hn::ConcatLowerLower(d4, xz23, xz01), hn::ConcatLowerLower(d4, yw23, yw01),
+                 hn::ConcatUpperUpper(d4, xz23, xz01)};
 }
 #endif
 

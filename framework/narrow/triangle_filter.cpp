@@ -31,7 +31,7 @@ using detail::triangle_column;
 /// corner ids first, in a loop of their own: pair → face → point is a chain of dependent loads, and a short loop
 /// lets the core run far ahead on it.
 template <std::size_t kBlock>
-void StageTriangles(const std::int32_t* pairs, const std::int32_t* faces, const double* x0, const double* x1,
+void StageTriangles(const std::int32_t* pairs, const std::int32_t* faces, const double* x01,
                     std::size_t n, double* block, std::size_t stride) {
   std::int32_t ids[detail::kTriangleCorners][kBlock];
   for (std::size_t i = 0; i < n; ++i)
@@ -44,7 +44,7 @@ void StageTriangles(const std::int32_t* pairs, const std::int32_t* faces, const 
     for (int corner = 0; corner < detail::kTriangleCorners; ++corner) {
       const std::int32_t id[4] = {ids[corner][i], ids[corner][i + 1], ids[corner][i + 2], ids[corner][i + 3]};
       for (int frame = 0; frame < 2; ++frame) {
-        const Points4 p = LoadPoints4(frame == 0 ? x0 : x1, id);
+        const Points4 p = LoadFramePoints4(x01, frame, id);
         double* col = block + stride * std::size_t(triangle_column(corner, frame, 0)) + i;
         hn::Store(p.x, d4, col);
         hn::Store(p.y, d4, col + stride);
@@ -58,7 +58,7 @@ void StageTriangles(const std::int32_t* pairs, const std::int32_t* faces, const 
       for (int frame = 0; frame < 2; ++frame)
         for (int axis = 0; axis < 3; ++axis)
           block[stride * std::size_t(triangle_column(corner, frame, axis)) + i] =
-              (frame == 0 ? x0 : x1)[3 * std::ptrdiff_t(ids[corner][i]) + axis];
+              x01[8 * std::ptrdiff_t(ids[corner][i]) + 4 * frame + axis];
 }
 
 template <class V>
@@ -127,8 +127,7 @@ HWY_INLINE void TriangleTest(D d, const Xyz<V> (&pt)[6][2], double abs_reach, do
   for (std::size_t j = 0; j < lanes; ++j) keep[j] = std::uint8_t(((bits[j / 8] >> (j % 8)) & 1) ^ 1);
 }
 
-void TriangleFilter(const std::int32_t* pairs, const std::int32_t* faces, const double* x0, const double* x1,
-                    std::size_t n, double abs_reach, double rel_reach, std::uint8_t* keep) {
+void TriangleFilter(const std::int32_t* pairs, const std::int32_t* faces, const double* x01, std::size_t n, double abs_reach, double rel_reach, std::uint8_t* keep) {
   const hn::ScalableTag<double> d;
   using V = hn::Vec<decltype(d)>;
   const std::size_t N = hn::Lanes(d);
@@ -136,7 +135,7 @@ void TriangleFilter(const std::int32_t* pairs, const std::int32_t* faces, const 
   HWY_ALIGN double block[kTriangleColumns * kStride];
   for (std::size_t b = 0; b < n; b += kBlock) {
     const std::size_t m = std::min(kBlock, n - b);
-    StageTriangles<kBlock>(pairs + 2 * b, faces, x0, x1, m, block, kStride);
+    StageTriangles<kBlock>(pairs + 2 * b, faces, x01, m, block, kStride);
     if (m % N != 0)  // the last vector's lanes past the end: zeros, never reported
       for (int c = 0; c < kTriangleColumns; ++c) std::fill_n(block + kStride * std::size_t(c) + m, N - m % N, 0.0);
     for (std::size_t i = 0; i < m; i += N) {
@@ -163,16 +162,16 @@ namespace ccdlab {
 
 HWY_EXPORT(TriangleFilter);
 
-void triangle_filter(std::span<const FacePair> candidates, const Face* faces, const Vec3* x_t0, const Vec3* x_t1,
+void triangle_filter(std::span<const FacePair> candidates, const Face* faces, const FramePoints* points,
                      CullReach reach, std::uint8_t* keep) {
   static_assert(sizeof(FacePair) == 2 * sizeof(std::int32_t) && sizeof(Face) == 3 * sizeof(std::int32_t) &&
-                    sizeof(Vec3) == 3 * sizeof(double),
-                "TriangleFilter reads ids as packed int32 and coordinate j of point p at 3p + j");
+                    sizeof(FramePoints) == 8 * sizeof(double),
+                "TriangleFilter reads ids as packed int32 and coordinate j of point p in frame f at 8p + 4f + j");
   if (candidates.empty()) return;
   HWY_DYNAMIC_DISPATCH(TriangleFilter)(reinterpret_cast<const std::int32_t*>(candidates.data()),
                                        reinterpret_cast<const std::int32_t*>(faces),
-                                       reinterpret_cast<const double*>(x_t0), reinterpret_cast<const double*>(x_t1),
-                                       candidates.size(), reach.abs, reach.rel, keep);
+                                       reinterpret_cast<const double*>(points), candidates.size(), reach.abs,
+                                       reach.rel, keep);
 }
 
 namespace {

@@ -22,6 +22,7 @@
 #include <span>
 
 #include "framework/geometry/vec.hpp"
+#include "framework/narrow/frame_points.hpp"
 #include "framework/mesh/tri_mesh.hpp"
 #include "framework/primitive/tester.hpp"
 #include "framework/traversal/candidates.hpp"
@@ -30,8 +31,8 @@ namespace ccdlab {
 
 /// keep[i] = 0 when candidate i's triangles are proven to stay farther apart than the reach, 1 otherwise. SIMD
 /// (Highway, run-time dispatch, as plane_filter); the twelve points of a block of candidates are staged in L1,
-/// four at a time where 256-bit vectors exist (point_loads-inl.h).
-void triangle_filter(std::span<const FacePair> candidates, const Face* faces, const Vec3* x_t0, const Vec3* x_t1,
+/// four at a time where 256-bit vectors exist (point_loads-inl.h), from `points` (the step's frames, a line a vertex).
+void triangle_filter(std::span<const FacePair> candidates, const Face* faces, const FramePoints* points,
                      CullReach reach, std::uint8_t* keep);
 
 /// The same test for one candidate, plain C++: the reference every SIMD target is checked against.

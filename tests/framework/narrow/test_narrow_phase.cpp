@@ -326,12 +326,14 @@ TEST(PlaneFilter, SimdStagingWritesThePlainRowsOnEveryTarget) {
     expect.set(vf.size() + i, x0[b[0]] - x0[a[0]], x1[b[0]] - x1[a[0]], x0[a[1]] - x0[a[0]], x1[a[1]] - x1[a[0]],
                x0[b[1]] - x0[b[0]], x1[b[1]] - x1[b[0]], x1[a[0]] - x0[a[0]]);
   }
+  std::vector<FramePoints> points(x0.size());
+  interleave_frames(x0.data(), x1.data(), points.size(), points.data());
   for_each_simd_target([&](const char* target) {
     PlaneBatch got;
     got.resize(expect.size());
-    stage_vf_rows(got, 0, vf, mesh.faces().data(), x0.data(), x1.data());
-    stage_ee_rows(got, vf.size(), ee, mesh.edges().data(), x0.data(), x1.data());
-    stage_ee_rows(got, got.size(), {}, mesh.edges().data(), x0.data(), x1.data());  // no rows: writes nothing
+    stage_vf_rows(got, 0, vf, mesh.faces().data(), points.data());
+    stage_ee_rows(got, vf.size(), ee, mesh.edges().data(), points.data());
+    stage_ee_rows(got, got.size(), {}, mesh.edges().data(), points.data());  // no rows: writes nothing
     for (int c = 0; c < PlaneBatch::kColumns; ++c)
       for (std::size_t i = 0; i < expect.size() + PlaneBatch::kPad; ++i)  // the padding rows stay zero
         ASSERT_EQ(got.column(c)[i], expect.column(c)[i]) << target << " column " << c << " row " << i;

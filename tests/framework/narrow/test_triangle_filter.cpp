@@ -59,12 +59,14 @@ TEST(TriangleFilter, EverySimdTargetAgreesWithThePlainVersion) {
       }
       EXPECT_GT(culled, expect.size() / 10);  // the comparison means something: both answers are common
       EXPECT_LT(culled, expect.size() * 9 / 10);
+      std::vector<FramePoints> points(r.x0.size());
+      interleave_frames(r.x0.data(), r.x1.data(), points.size(), points.data());
       const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
       ASSERT_FALSE(targets.empty());
       for (std::int64_t t : targets) {
         hwy::SetSupportedTargetsForTest(t);
         std::vector<std::uint8_t> keep(expect.size(), 7);
-        triangle_filter(r.candidates, r.faces.data(), r.x0.data(), r.x1.data(), reach, keep.data());
+        triangle_filter(r.candidates, r.faces.data(), points.data(), reach, keep.data());
         EXPECT_EQ(keep, expect) << hwy::TargetName(t) << " motion " << motion << " reach " << reach.abs;
       }
       hwy::SetSupportedTargetsForTest(0);
