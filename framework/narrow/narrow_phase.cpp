@@ -227,19 +227,22 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   const auto t_split = Clock::now();
   c.plane_ns += ns_since(t);
   // Stage 3 on stage 2's survivors, from the coefficients, threshold and reach stage 2 left in the rows: halves,
-  // then sixteenths on what the halves keep (split_filter.hpp), which also leave each row's open windows.
+  // then sixteenths on what the halves keep, within the halves they left open (split_filter.hpp); both leave
+  // each row's open windows, the sixteenths' for stage 4.
   std::size_t kept_vf = 0, rows = 0;
   for (const int levels : {kSplitCoarseLevels, kSplitLevels}) {
     const bool last = levels == kSplitLevels;
     kept_vf = batch.vf.size(), rows = kept_vf + batch.ee.size();
     if (last || compact_now) scratch.keep.assign(rows, 1);  // else: stage 2's flags, which the halves only clear
-    scratch.open.resize(last ? rows : 0);
-    std::uint16_t* open = last ? scratch.open.data() : nullptr;
-    split_filter(plane, 0, kept_vf, true, scratch.keep.data(), levels, open);
-    split_filter(plane, kept_vf, rows, false, scratch.keep.data(), levels, open);
+    scratch.open.resize(rows);
+    std::uint16_t* open = scratch.open.data();
+    const std::uint16_t* halves = last ? open : nullptr;  // read and overwritten row by row
+    split_filter(plane, 0, kept_vf, true, scratch.keep.data(), levels, open, halves);
+    split_filter(plane, kept_vf, rows, false, scratch.keep.data(), levels, open, halves);
     if (last) break;  // stage 4 reads these rows in place, and compacts once
     plane.compact(scratch.keep.data());  // the rows the next pass reads
     compact(batch, scratch.keep);
+    compact(scratch.open, scratch.keep.data());
   }
   std::size_t split_kept = 0;
   for (std::size_t i = 0; i < rows; ++i) split_kept += scratch.keep[i];

@@ -29,12 +29,19 @@ constexpr int kSplitCoarseLevels = 1;
 /// Rows [begin, end) of `plane`, all VF (`vf`) or all EE, filled by plane_filter: keep[i] = 0 for rows proven
 /// apart on every one of the 2^levels windows, untouched otherwise; with `open`, open[i] = the windows not
 /// proven (bit w: window w), what stage 4 (proximity_filter.hpp) looks at. Runs on the best SIMD target of this CPU.
+/// `halves` (sixteenths only, with `open`; may be `open` itself): the open bits the halves pass left for each
+/// row. The sixteenths of a half it proved stay closed (a proof for a window holds on every part of it), and a
+/// vector whose rows each have one open half computes that half's eight windows only (of the rows that reach
+/// the sixteenths, 99% have one open half on n-body, 90% on rod-twist).
 void split_filter(const PlaneBatch& plane, std::size_t begin, std::size_t end, bool vf, std::uint8_t* keep,
-                  int levels = kSplitLevels, std::uint16_t* open = nullptr);
+                  int levels = kSplitLevels, std::uint16_t* open = nullptr, const std::uint16_t* halves = nullptr);
 
 /// The same test for one row, plain C++: the reference the SIMD targets are checked against. _open gives the
-/// windows not proven, _keeps whether there is one.
+/// windows not proven, _keeps whether there is one; with the halves pass's bits `halves` (1 or 2: one open
+/// half), the sixteenths of the other half are closed.
 [[nodiscard]] std::uint16_t split_filter_open(const PlaneBatch& plane, std::size_t row, bool vf, int levels = kSplitLevels);
+[[nodiscard]] std::uint16_t split_filter_open(const PlaneBatch& plane, std::size_t row, bool vf, int levels,
+                                              std::uint16_t halves);
 [[nodiscard]] bool split_filter_keeps(const PlaneBatch& plane, std::size_t row, bool vf, int levels = kSplitLevels);
 
 }  // namespace ccdlab

@@ -19,6 +19,7 @@
 #include "framework/narrow/split_filter.hpp"
 #include "framework/pipeline/brute_force.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
+#include "framework/util/error.hpp"
 #include "strategies/registry.hpp"
 #include "strategies/testers/float_tester.hpp"
 #include "support/simd_targets.hpp"
@@ -152,6 +153,47 @@ TEST(SplitFilter, EverySimdTargetAgreesWithThePlainVersion) {
       });
     }
   }
+}
+
+TEST(SplitFilter, SixteenthsWithinTheOpenHalvesAgreeWithThePlainVersion) {
+  // The sixteenths given the halves pass's open bits, as the narrow phase runs them (the bits read in place):
+  // every row's windows within its open halves as the plain version finds them, the other half closed. Rows
+  // are mostly one open half, in runs (whole vectors take the eight-window path) and mixed with rows where
+  // both are open (their vectors take the sixteen-window path), on every target, at thickness 0 and > 0.
+  const std::size_t n = 4001, nvf = 1777;
+  PlaneBatch b = near_contact_rows(n, 22);
+  std::mt19937 rng(5);
+  std::vector<std::uint16_t> halves(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool mixed = (i / 64) % 2 == 1;  // runs of 64 rows: one open half each, then any of 1, 2, 3
+    halves[i] = std::uint16_t(mixed ? 1 + rng() % 3 : 1 + rng() % 2);
+  }
+  for (CullReach reach : {CullReach{0, 2e-9}, CullReach{0.02, 2e-9}}) {
+    std::vector<std::uint8_t> stage2(n);
+    plane_filter(b, reach, stage2.data());
+    std::vector<std::uint8_t> expect(n);
+    std::vector<std::uint16_t> expect_open(n);
+    std::size_t kept_by_other_half = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      expect_open[i] = split_filter_open(b, i, i < nvf, kSplitLevels, halves[i]);
+      expect[i] = expect_open[i] != 0;
+      const std::uint16_t all = split_filter_open(b, i, i < nvf, kSplitLevels);
+      EXPECT_EQ(expect_open[i] & ~all, 0) << "row " << i;  // never opens a window the full pass closes
+      kept_by_other_half += all != 0 && expect_open[i] == 0;
+    }
+    EXPECT_GT(kept_by_other_half, n / 20);  // the closed half matters: rows it alone drops are common
+    for_each_simd_target([&](const char* target) {
+      std::vector<std::uint8_t> keep(n, 1);
+      std::vector<std::uint16_t> open = halves;
+      split_filter(b, 0, nvf, true, keep.data(), kSplitLevels, open.data(), open.data());
+      split_filter(b, nvf, n, false, keep.data(), kSplitLevels, open.data(), open.data());
+      EXPECT_EQ(keep, expect) << target;
+      EXPECT_EQ(open, expect_open) << target;
+    });
+  }
+  std::vector<std::uint8_t> keep(1, 1);
+  std::uint16_t open = 1;
+  EXPECT_THROW(split_filter(b, 0, 1, true, keep.data(), kSplitCoarseLevels, &open, &open), Error);
 }
 
 TEST(ProximityFilter, EverySimdTargetAgreesWithThePlainVersion) {
