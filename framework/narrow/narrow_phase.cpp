@@ -266,6 +266,7 @@ void NarrowPhase::test(const FeatureBatch& batch, Contacts& out, NarrowCounters&
   // In blocks, for testers with a batched kernel (PrimitiveTester::vertex_faces); a block's queries stay in L1.
   const auto from = [&](std::size_t i) { return batch.from.empty() ? 0.0 : double(batch.from[i]); };
   const auto in_blocks = [&](const auto& pairs, auto query_of, auto run, auto record) {
+    if (pairs.empty()) return;  // most chunks of a sparse step: not even the arrays below (64 hits to initialise)
     constexpr std::size_t kBlock = 64;
     std::array<decltype(query_of(pairs[0])), kBlock> queries;
     std::array<CcdHit, kBlock> hits;
