@@ -135,6 +135,14 @@ ExactTester::Decision decide_points(const std::array<Vec3, 4>& x0, const std::ar
 
   std::lock_guard lock(kernel_mutex());
   AK ak;
+  if (CGAL::is_zero(f.evaluate(Z(0)))) {
+    // Coplanar at the start (a contact the last step ended in, most often): when the features meet there, 0 is
+    // the earliest contact and no root needs isolating (the queries certification leaves to the algebra are
+    // mostly these).
+    const Root start = ak.construct_algebraic_real_1_object()(Z(0));
+    const AtTime at(ak, start);
+    if (edge_edge ? edges_cross(at, x) : vertex_in_face(at, x)) return {true, 0.0, 0.0, false};
+  }
   std::vector<Root> times;
   if (!CGAL::is_zero(f)) {
     roots_in_step(ak, f, times);
@@ -183,28 +191,53 @@ std::pair<double, double> narrow_contact(const interval_ccd::RelativeMotion& m, 
   }
 }
 
+/// What settling one window led to: none of its contacts (go on to the next), the earliest contact (`out`), or
+/// nothing proven (the algebra decides the query).
+enum class Settled { apart, contact, undecided };
+
+/// Settles [a, b], a window where f may vanish with none of the query's contacts before a. A window classified
+/// `unknown` is halved, earliest half first, at most `depth` times: a window is often unknown only because the
+/// features cross each other's boundary somewhere in it, away from f's root, and a narrower window around the
+/// root is proven (n-body: most of the queries the algebra decided). `budget` caps the classifications a query
+/// spends.
+Settled settle(const interval_ccd::RelativeMotion& m, double a, double b, int depth, int& budget,
+               std::optional<ExactTester::Decision>& out) {
+  constexpr double kToiWidth = 0x1p-30;
+  if (--budget < 0) return Settled::undecided;
+  switch (interval_ccd::classify(m, a, b)) {
+    case interval_ccd::Verdict::separated:
+      return Settled::apart;
+    case interval_ccd::Verdict::contact: {
+      const auto [lo, hi] = narrow_contact(m, a, b);
+      if (hi - lo > kToiWidth) return Settled::undecided;  // the time stays too loose: the algebra gives it to adjacent doubles
+      out = ExactTester::Decision{true, lo, hi, true};
+      return Settled::contact;
+    }
+    case interval_ccd::Verdict::unknown:
+      break;
+  }
+  const double mid = 0.5 * (a + b);
+  if (depth == 0 || !(mid > a && mid < b)) return Settled::undecided;
+  const Settled left = settle(m, a, mid, depth - 1, budget, out);
+  return left == Settled::apart ? settle(m, mid, b, depth - 1, budget, out) : left;
+}
+
 std::optional<ExactTester::Decision> certified(const interval_ccd::RelativeMotion& m) {
-  constexpr double kWindowWidth = 0x1p-12, kToiWidth = 0x1p-30;
-  constexpr int kMaxWindows = 64;  // more: f near zero over much of the step (coplanar motion)
+  constexpr double kWindowWidth = 0x1p-12;
+  constexpr int kMaxWindows = 64;   // more: f near zero over much of the step (coplanar motion)
+  constexpr int kMaxHalvings = 12;  // an unknown window of 2⁻¹² down to 2⁻²⁴
+  int budget = 96;                  // classifications, all windows together
   std::optional<ExactTester::Decision> out;
   bool undecided = false;
   int windows = 0;
   interval_ccd::for_each_coplanarity_window(m, 0.0, 1.0, kWindowWidth, [&](double a, double b) {
     if (++windows > kMaxWindows) return undecided = true;
-    switch (interval_ccd::classify(m, a, b)) {
-      case interval_ccd::Verdict::separated:
-        return false;
-      case interval_ccd::Verdict::contact:
-        if (const auto [lo, hi] = narrow_contact(m, a, b); hi - lo <= kToiWidth) out = ExactTester::Decision{true, lo, hi, true};
-        else undecided = true;  // the time stays too loose: the algebra gives it to adjacent doubles
-        return true;
-      case interval_ccd::Verdict::unknown:
-        return undecided = true;
-    }
-    return undecided = true;
+    const Settled s = settle(m, a, b, kMaxHalvings, budget, out);
+    if (s == Settled::undecided) undecided = true;
+    return s != Settled::apart;
   });
   if (!out && !undecided) out = ExactTester::Decision{false, 1, 1, true};
-  return out;
+  return undecided ? std::nullopt : out;
 }
 
 template <class Query>

@@ -23,8 +23,12 @@
 // the earliest contact, proven: hit, and bisection narrows the time (halves where f ≠ 0 are dropped, halves with
 // a proven contact kept) as far as interval bounds prove; an enclosure left wider than 2⁻³⁰ goes to the algebra
 // (whose enclosures are adjacent doubles; certify=false gives those for every hit).
-// When every window is separated: no contact, proven. Only an `unknown` window (a grazing or degenerate
-// contact) or coplanar motion (too many windows) goes on to the algebra.
+// A window classified `unknown` is halved, earliest half first, down to 2⁻²⁴ (often only the features' crossing
+// of each other's boundary elsewhere in the window kept it unknown). When every window is separated: no
+// contact, proven. Only a window still `unknown` (a grazing or degenerate contact, or one at t = 0) or coplanar
+// motion (too many windows) goes on to the algebra, which first checks t = 0 itself: features that meet there
+// (coplanar at the start, the contact the last step ended in) have their earliest contact at 0, with no root
+// to isolate.
 #include "framework/primitive/tester.hpp"
 #include "framework/queries/evaluate.hpp"
 
