@@ -72,9 +72,9 @@ class PlaneBatch {
 /// Stage 2's staging: writes rows [first, first + pairs.size()) of `batch` (sized already) from the pairs'
 /// positions (`points`, the step's frames: frame_points.hpp), in SIMD where the CPU has 256-bit vectors (four
 /// rows at a time, each point's coordinates loaded and transposed; the plain loop was bound by its ~90
-/// instructions a row, not by memory). The same doubles as
-/// set() with, for VF (v, f): A = v − f0, B = f1 − f0, C = f2 − f0, D = f0(t1) − f0(t0); for EE (a, b):
-/// A = b0 − a0, B = a1 − a0, C = b1 − b0, D = a0(t1) − a0(t0) (A, B, C at t0 and t1).
+/// instructions a row, not by memory). The same doubles as set() with, for VF (v, f): A = v − f0, B = f1 − f0,
+/// C = f2 − f0, D = f0(t1) − f0(t0); for EE (a, b): A = b0 − a0, B = a1 − a0, C = b1 − b0, D = a0(t1) − a0(t0)
+/// (A, B, C at t0 and t1).
 void stage_vf_rows(PlaneBatch& batch, std::size_t first, std::span<const VertexFacePair> pairs, const Face* faces,
                    const FramePoints* points);
 void stage_ee_rows(PlaneBatch& batch, std::size_t first, std::span<const EdgeEdgePair> pairs, const Edge* edges,
