@@ -105,7 +105,7 @@ void quantize_dops(const PaddedDop* in, CoarseDop* out, std::size_t n, const flo
 class FeatureBounds {
  public:
   /// Swept 26-DOP of every vertex between the two frames, inflated by thickness / 2 (float and coarse); and the
-  /// two frames interleaved, as the staging kernels of stages 0 and 2 read them (frame_points.hpp).
+  /// two frames interleaved, as stage 2's staging kernel reads them (frame_points.hpp).
   void update(const Positions& x_t0, const Positions& x_t1, double thickness, int threads, PhaseTrace& trace);
 
   /// Vertex v at both ends of the step, v < the frames' size (update).

@@ -84,6 +84,7 @@ void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const
   bounds_ = &bounds;
   triangle_stage_ = options_.mode == NarrowMode::batched && tester_.cull_reach() &&
                     (steps_ % kTriangleRemeasure == 0 || triangle_cull_rate_ >= kTriangleCullPays);
+  if (triangle_stage_) float_frames_.update(x_t0.data(), x_t1.data(), x_t0.size());
 }
 
 void NarrowPhase::end_step(const NarrowCounters& step) {
@@ -101,7 +102,7 @@ void NarrowPhase::gather(std::span<const FacePair> candidates, NarrowScratch& sc
   }
   const auto t = Clock::now();
   scratch.keep.resize(candidates.size());
-  triangle_filter(candidates, mesh_.faces().data(), bounds_->frame_points(), *reach, scratch.keep.data());
+  triangle_filter(candidates, mesh_.faces().data(), float_frames_, *reach, scratch.keep.data());
   scratch.candidates.clear();
   append_kept(candidates, scratch.keep.data(), scratch.candidates);
   c.triangle_tested += candidates.size();

@@ -6,8 +6,6 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
-#include "framework/narrow/point_loads-inl.h"
-
 #ifndef CCDLAB_TRIANGLE_FILTER_LAYOUT
 #define CCDLAB_TRIANGLE_FILTER_LAYOUT
 namespace ccdlab::detail {
@@ -15,8 +13,8 @@ namespace ccdlab::detail {
 constexpr int kTriangleCorners = 6;
 constexpr int kTriangleColumns = kTriangleCorners * 2 * 3;
 constexpr int triangle_column(int corner, int frame, int axis) { return (corner * 2 + frame) * 3 + axis; }
-// The gap's rounding terms (triangle_filter.hpp): 16u per unit of L̄, the reach's slack, and a floor.
-constexpr double kTriangleErrFactor = 16 * 0x1p-53, kTriangleSlack = 1 + 1e-12, kTriangleTiny = 1e-290;
+// The gap's terms (triangle_filter.hpp): 16u per unit of L̄, the slack, and the floor.
+constexpr float kTriangleErrFactor = 16 * 0x1p-24f, kTriangleSlack = 1 + 0x1p-18f, kTriangleTiny = 1e-30f;
 }  // namespace ccdlab::detail
 #endif
 
@@ -31,27 +29,38 @@ using detail::triangle_column;
 /// corner ids first, in a loop of their own: pair → face → point is a chain of dependent loads, and a short loop
 /// lets the core run far ahead on it.
 template <std::size_t kBlock>
-void StageTriangles(const std::int32_t* pairs, const std::int32_t* faces, const double* x01,
-                    std::size_t n, double* block, std::size_t stride) {
+void StageTriangles(const std::int32_t* pairs, const std::int32_t* faces, const float* x01, std::size_t n,
+                    float* block, std::size_t stride) {
   std::int32_t ids[detail::kTriangleCorners][kBlock];
   for (std::size_t i = 0; i < n; ++i)
     for (int corner = 0; corner < detail::kTriangleCorners; ++corner)
       ids[corner][i] = faces[3 * std::ptrdiff_t(pairs[2 * i + corner / 3]) + corner % 3];
   std::size_t i = 0;
-#if CCDLAB_POINT_LOADS_4
-  const Points4Tag d4;
-  for (; i + 4 <= n; i += 4) {
+#if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
+  // Eight corners at a time: one aligned 256-bit load each (x y z 0 at t0, x y z 0 at t1), then an 8 × 8
+  // transpose of which six rows are kept.
+  const hn::Full256<float> d8;
+  const hn::Full256<double> d4;
+  for (; i + 8 <= n; i += 8)
     for (int corner = 0; corner < detail::kTriangleCorners; ++corner) {
-      const std::int32_t id[4] = {ids[corner][i], ids[corner][i + 1], ids[corner][i + 2], ids[corner][i + 3]};
-      for (int frame = 0; frame < 2; ++frame) {
-        const Points4 p = LoadFramePoints4(x01, frame, id);
-        double* col = block + stride * std::size_t(triangle_column(corner, frame, 0)) + i;
-        hn::Store(p.x, d4, col);
-        hn::Store(p.y, d4, col + stride);
-        hn::Store(p.z, d4, col + 2 * stride);
+      hn::Vec<decltype(d8)> r[8];
+      for (int k = 0; k < 8; ++k) r[k] = hn::Load(d8, x01 + 8 * std::ptrdiff_t(ids[corner][i + k]));
+      // Per 128-bit half (t0 | t1): pairs of rows interleaved, then pairs of pairs, then the halves joined.
+      hn::Vec<decltype(d4)> xy[4], zw[4];
+      for (int k = 0; k < 4; ++k) {
+        xy[k] = hn::BitCast(d4, hn::InterleaveLower(d8, r[2 * k], r[2 * k + 1]));  // x x y y | x x y y
+        zw[k] = hn::BitCast(d4, hn::InterleaveUpper(d8, r[2 * k], r[2 * k + 1]));  // z z 0 0 | z z 0 0
+      }
+      const hn::Vec<decltype(d4)> axis[2][3] = {
+          {hn::InterleaveLower(d4, xy[0], xy[1]), hn::InterleaveUpper(d4, xy[0], xy[1]), hn::InterleaveLower(d4, zw[0], zw[1])},
+          {hn::InterleaveLower(d4, xy[2], xy[3]), hn::InterleaveUpper(d4, xy[2], xy[3]), hn::InterleaveLower(d4, zw[2], zw[3])}};
+      for (int a = 0; a < 3; ++a) {  // axis[h][a]: rows 4h..4h+3's coordinate a, at t0 | at t1
+        const auto t0 = hn::BitCast(d8, hn::ConcatLowerLower(d4, axis[1][a], axis[0][a]));
+        const auto t1 = hn::BitCast(d8, hn::ConcatUpperUpper(d4, axis[1][a], axis[0][a]));
+        hn::Store(t0, d8, block + stride * std::size_t(triangle_column(corner, 0, a)) + i);
+        hn::Store(t1, d8, block + stride * std::size_t(triangle_column(corner, 1, a)) + i);
       }
     }
-  }
 #endif
   for (; i < n; ++i)
     for (int corner = 0; corner < detail::kTriangleCorners; ++corner)
@@ -68,7 +77,7 @@ struct Xyz {
 
 /// Whether the twelve points, projected on the axis n = B0×C0 + B1×C1 of the face with corners o, b, c (B, C its
 /// edges from o at t0 and t1), leave the two faces' intervals farther apart than the reach (triangle_filter.hpp).
-/// `gap_factor` = reach·slack + 16u·L̄ (L̄ bounds every |p − o| coordinate); operations in the order of
+/// `gap_factor` = r·slack + 16u·L̄ + 8ε (L̄ bounds every |p − o| coordinate); operations in the order of
 /// triangle_pair_keeps.
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE hn::Mask<D> SideCulled(D d, const Xyz<V> (&pt)[6][2], int o, int b, int c, int other, V gap_factor) {
@@ -104,11 +113,12 @@ HWY_INLINE hn::Mask<D> SideCulled(D d, const Xyz<V> (&pt)[6][2], int o, int b, i
   return hn::Or(hn::Gt(hn::Sub(lo, own_hi), gap), hn::Gt(hn::Sub(own_lo, hi), gap));
 }
 
-/// Stage 0 on one vector of candidates, `pt` their corners: keep[j] for the first `lanes`.
+/// Stage 0 on one vector of candidates, `pt` their corners: keep[j] for the first `lanes`. `abs_reach`,
+/// `rel_reach` and `error` (ε) as floats no smaller than the doubles they stand for.
 template <class D, class V = hn::Vec<D>>
-HWY_INLINE void TriangleTest(D d, const Xyz<V> (&pt)[6][2], double abs_reach, double rel_reach, std::size_t lanes,
-                             std::uint8_t* keep) {
-  // The reach: L ≤ the twelve points' bounding-box extent in the 1-norm.
+HWY_INLINE void TriangleTest(D d, const Xyz<V> (&pt)[6][2], float abs_reach, float rel_reach, float error,
+                             std::size_t lanes, std::uint8_t* keep) {
+  // The reach: L ≤ the twelve points' bounding-box extent in the 1-norm, + 8ε for the exact points (6ε suffice).
   V lo[3] = {pt[0][0].x, pt[0][0].y, pt[0][0].z}, hi[3] = {lo[0], lo[1], lo[2]};
   for (int corner = 0; corner < 6; ++corner)
     for (int frame = 0; frame < 2; ++frame) {
@@ -117,9 +127,11 @@ HWY_INLINE void TriangleTest(D d, const Xyz<V> (&pt)[6][2], double abs_reach, do
       hi[0] = hn::Max(hi[0], p.x), hi[1] = hn::Max(hi[1], p.y), hi[2] = hn::Max(hi[2], p.z);
     }
   const V extent = hn::Add(hn::Add(hn::Sub(hi[0], lo[0]), hn::Sub(hi[1], lo[1])), hn::Sub(hi[2], lo[2]));
-  const V reach = hn::Add(hn::Set(d, abs_reach), hn::Mul(hn::Set(d, rel_reach), extent));
-  const V gap_factor = hn::Add(hn::Mul(reach, hn::Set(d, detail::kTriangleSlack)),
-                               hn::Mul(hn::Set(d, detail::kTriangleErrFactor), extent));
+  const V eps = hn::Set(d, error);
+  const V reach = hn::Add(hn::Set(d, abs_reach), hn::Mul(hn::Set(d, rel_reach), hn::Add(extent, hn::Mul(hn::Set(d, 8.0f), eps))));
+  const V gap_factor = hn::Add(hn::Add(hn::Mul(reach, hn::Set(d, detail::kTriangleSlack)),
+                                       hn::Mul(hn::Set(d, detail::kTriangleErrFactor), extent)),
+                               hn::Mul(hn::Set(d, 8.0f), eps));
   auto culled = SideCulled(d, pt, 0, 1, 2, 3, gap_factor);
   if (!hn::AllTrue(d, culled)) culled = hn::Or(culled, SideCulled(d, pt, 3, 4, 5, 0, gap_factor));
   std::uint8_t bits[8] = {};
@@ -127,25 +139,26 @@ HWY_INLINE void TriangleTest(D d, const Xyz<V> (&pt)[6][2], double abs_reach, do
   for (std::size_t j = 0; j < lanes; ++j) keep[j] = std::uint8_t(((bits[j / 8] >> (j % 8)) & 1) ^ 1);
 }
 
-void TriangleFilter(const std::int32_t* pairs, const std::int32_t* faces, const double* x01, std::size_t n, double abs_reach, double rel_reach, std::uint8_t* keep) {
-  const hn::ScalableTag<double> d;
+void TriangleFilter(const std::int32_t* pairs, const std::int32_t* faces, const float* x01, std::size_t n,
+                    float abs_reach, float rel_reach, float error, std::uint8_t* keep) {
+  const hn::ScalableTag<float> d;
   using V = hn::Vec<decltype(d)>;
   const std::size_t N = hn::Lanes(d);
-  constexpr std::size_t kBlock = 64, kStride = kBlock + 8;  // + 8: a full vector past a short block's end
-  HWY_ALIGN double block[kTriangleColumns * kStride];
+  constexpr std::size_t kBlock = 64, kStride = kBlock + 16;  // + 16: a full vector past a short block's end
+  HWY_ALIGN float block[kTriangleColumns * kStride];
   for (std::size_t b = 0; b < n; b += kBlock) {
     const std::size_t m = std::min(kBlock, n - b);
     StageTriangles<kBlock>(pairs + 2 * b, faces, x01, m, block, kStride);
     if (m % N != 0)  // the last vector's lanes past the end: zeros, never reported
-      for (int c = 0; c < kTriangleColumns; ++c) std::fill_n(block + kStride * std::size_t(c) + m, N - m % N, 0.0);
+      for (int c = 0; c < kTriangleColumns; ++c) std::fill_n(block + kStride * std::size_t(c) + m, N - m % N, 0.0f);
     for (std::size_t i = 0; i < m; i += N) {
       Xyz<V> pt[6][2];
       for (int corner = 0; corner < 6; ++corner)
         for (int frame = 0; frame < 2; ++frame) {
-          const double* col = block + kStride * std::size_t(triangle_column(corner, frame, 0)) + i;
+          const float* col = block + kStride * std::size_t(triangle_column(corner, frame, 0)) + i;
           pt[corner][frame] = {hn::Load(d, col), hn::Load(d, col + kStride), hn::Load(d, col + 2 * kStride)};
         }
-      TriangleTest(d, pt, abs_reach, rel_reach, std::min(N, m - i), keep + b + i);
+      TriangleTest(d, pt, abs_reach, rel_reach, error, std::min(N, m - i), keep + b + i);
     }
   }
 }
@@ -157,64 +170,83 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace ccdlab {
 
 HWY_EXPORT(TriangleFilter);
 
-void triangle_filter(std::span<const FacePair> candidates, const Face* faces, const FramePoints* points,
+namespace {
+/// A float no smaller than x (non-negative x; +∞ past float's range, NaN stays NaN).
+float float_at_least(double x) {
+  const float f = float(x);
+  return double(f) >= x ? f : std::nextafter(f, std::numeric_limits<float>::infinity());
+}
+}  // namespace
+
+void triangle_filter(std::span<const FacePair> candidates, const Face* faces, const FloatFrames& frames,
                      CullReach reach, std::uint8_t* keep) {
   static_assert(sizeof(FacePair) == 2 * sizeof(std::int32_t) && sizeof(Face) == 3 * sizeof(std::int32_t) &&
-                    sizeof(FramePoints) == 8 * sizeof(double),
+                    sizeof(FloatFramePoints) == 8 * sizeof(float),
                 "TriangleFilter reads ids as packed int32 and coordinate j of point p in frame f at 8p + 4f + j");
   if (candidates.empty()) return;
   HWY_DYNAMIC_DISPATCH(TriangleFilter)(reinterpret_cast<const std::int32_t*>(candidates.data()),
                                        reinterpret_cast<const std::int32_t*>(faces),
-                                       reinterpret_cast<const double*>(points), candidates.size(), reach.abs,
-                                       reach.rel, keep);
+                                       reinterpret_cast<const float*>(frames.points.data()), candidates.size(),
+                                       float_at_least(reach.abs), float_at_least(reach.rel),
+                                       float_at_least(frames.error), keep);
 }
 
 namespace {
+struct Vec3f {
+  float x, y, z;
+};
+Vec3f operator-(const Vec3f& a, const Vec3f& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+
 /// SideCulled for one candidate, the same operations in the same order.
-bool side_culled(const Vec3 (&pt)[6][2], int o, int b, int c, int other, double gap_factor) {
-  const auto cross = [](const Vec3& y, const Vec3& z) {
-    return Vec3(y.y() * z.z() - y.z() * z.y(), y.z() * z.x() - y.x() * z.z(), y.x() * z.y() - y.y() * z.x());
+bool side_culled(const Vec3f (&pt)[6][2], int o, int b, int c, int other, float gap_factor) {
+  const auto cross = [](const Vec3f& y, const Vec3f& z) {
+    return Vec3f{y.y * z.z - y.z * z.y, y.z * z.x - y.x * z.z, y.x * z.y - y.y * z.x};
   };
-  const auto dot = [](const Vec3& x, const Vec3& c) { return (x.x() * c.x() + x.y() * c.y()) + x.z() * c.z(); };
-  const Vec3 n0 = cross(pt[b][0] - pt[o][0], pt[c][0] - pt[o][0]);
-  const Vec3 n1 = cross(pt[b][1] - pt[o][1], pt[c][1] - pt[o][1]);
-  const Vec3 n(n0.x() + n1.x(), n0.y() + n1.y(), n0.z() + n1.z());
-  double own_lo = 0, own_hi = 0;
+  const auto dot = [](const Vec3f& x, const Vec3f& c) { return (x.x * c.x + x.y * c.y) + x.z * c.z; };
+  const Vec3f n0 = cross(pt[b][0] - pt[o][0], pt[c][0] - pt[o][0]);
+  const Vec3f n1 = cross(pt[b][1] - pt[o][1], pt[c][1] - pt[o][1]);
+  const Vec3f n{n0.x + n1.x, n0.y + n1.y, n0.z + n1.z};
+  float own_lo = 0, own_hi = 0;
   for (const int corner : {b, c})
     for (int frame = 0; frame < 2; ++frame) {
-      const double s = dot(pt[corner][frame] - pt[o][frame], n);
+      const float s = dot(pt[corner][frame] - pt[o][frame], n);
       own_lo = std::min(own_lo, s), own_hi = std::max(own_hi, s);
     }
-  double lo = dot(pt[other][0] - pt[o][0], n), hi = lo;
+  float lo = dot(pt[other][0] - pt[o][0], n), hi = lo;
   for (int corner = other; corner < other + 3; ++corner)
     for (int frame = 0; frame < 2; ++frame) {
       if (corner == other && frame == 0) continue;
-      const double s = dot(pt[corner][frame] - pt[o][frame], n);
+      const float s = dot(pt[corner][frame] - pt[o][frame], n);
       lo = std::min(lo, s), hi = std::max(hi, s);
     }
-  const double norm1 = (std::abs(n.x()) + std::abs(n.y())) + std::abs(n.z());
-  const double gap = norm1 * gap_factor + detail::kTriangleTiny;
+  const float norm1 = (std::abs(n.x) + std::abs(n.y)) + std::abs(n.z);
+  const float gap = norm1 * gap_factor + detail::kTriangleTiny;
   return lo - own_hi > gap || own_lo - hi > gap;
 }
 }  // namespace
 
-bool triangle_pair_keeps(const Face& f, const Face& g, const Vec3* x_t0, const Vec3* x_t1, CullReach reach) {
-  Vec3 pt[6][2];
-  for (int k = 0; k < 3; ++k) {
-    pt[k][0] = x_t0[f[k]], pt[k][1] = x_t1[f[k]];
-    pt[3 + k][0] = x_t0[g[k]], pt[3 + k][1] = x_t1[g[k]];
+bool triangle_pair_keeps(const Face& f, const Face& g, const FloatFrames& frames, CullReach reach) {
+  Vec3f pt[6][2];
+  for (int k = 0; k < 6; ++k) {
+    const FloatFramePoints& p = frames.points[std::size_t(k < 3 ? f[k] : g[k - 3])];
+    pt[k][0] = {p.t0[0], p.t0[1], p.t0[2]}, pt[k][1] = {p.t1[0], p.t1[1], p.t1[2]};
   }
-  Vec3 lo = pt[0][0], hi = pt[0][0];
+  float lo[3] = {pt[0][0].x, pt[0][0].y, pt[0][0].z}, hi[3] = {lo[0], lo[1], lo[2]};
   for (const auto& corner : pt)
-    for (const Vec3& p : corner) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  const double extent = ((hi.x() - lo.x()) + (hi.y() - lo.y())) + (hi.z() - lo.z());
-  const double r = reach.abs + reach.rel * extent;
-  const double gap_factor = r * detail::kTriangleSlack + detail::kTriangleErrFactor * extent;
+    for (const Vec3f& p : corner) {
+      lo[0] = std::min(lo[0], p.x), lo[1] = std::min(lo[1], p.y), lo[2] = std::min(lo[2], p.z);
+      hi[0] = std::max(hi[0], p.x), hi[1] = std::max(hi[1], p.y), hi[2] = std::max(hi[2], p.z);
+    }
+  const float extent = ((hi[0] - lo[0]) + (hi[1] - lo[1])) + (hi[2] - lo[2]);
+  const float eps = float_at_least(frames.error);
+  const float r = float_at_least(reach.abs) + float_at_least(reach.rel) * (extent + 8.0f * eps);
+  const float gap_factor = (r * detail::kTriangleSlack + detail::kTriangleErrFactor * extent) + 8.0f * eps;
   return !(side_culled(pt, 0, 1, 2, 3, gap_factor) || side_culled(pt, 3, 4, 5, 0, gap_factor));
 }
 

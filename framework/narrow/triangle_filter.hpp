@@ -14,10 +14,19 @@
 //
 // The reach's relative part uses the twelve points' (both faces, both frames) bounding-box extent in the 1-norm,
 // L̄: it bounds the box diagonal of every feature pair's query (CullReach's L), so r is never below any of them.
-// Rounding: each difference is one subtraction of exact inputs and n is used as given (any axis is valid), so
-// a projection errs by at most 4u·‖p − o‖∞·‖n‖₁ ≤ 4u·L̄·‖n‖₁; the gap must exceed ‖n‖₁·(r·(1 + 10⁻¹²) + 16u·L̄),
-// twice the two intervals' error with room for the rounding of the bound itself (‖n‖₁ ≥ |n|). Pairs that share a
-// vertex are never dropped (0 lies in both intervals).
+//
+// In float (FloatFrames: the frames moved to the centre of their box, each coordinate within ε of the exact
+// translated value). The test runs on the float points, exactly as above, and allows for two things:
+// - The float points. Every point of either face at any t is a convex combination of its corners at the two
+//   ends, so it lies within ε per coordinate of its float counterpart, and a point taken relative to o within 2ε:
+//   each projection moves by at most 2ε‖n‖₁, each interval widens by as much, and the gap by 4ε‖n‖₁. The exact
+//   points' L̄ is at most the float points' + 6ε.
+// - The rounding (u = 2⁻²⁴). Each difference is one subtraction and n is used as given (any axis is valid), so a
+//   projection errs by at most 4u·‖p − o‖∞·‖n‖₁ ≤ 4u·L̄·‖n‖₁.
+// A pair is dropped when the gap exceeds ‖n‖₁·(r·s + 16u·L̄ + 8ε) + 10⁻³⁰ with r = abs + rel·(L̄ + 8ε): twice each
+// error, the slack s = 1 + 2⁻¹⁸ for the rounding of r, ‖n‖₁ and the gap itself (≥ 10u), and a floor above any
+// error of an underflowed product. ‖n‖₁ ≥ |n|. Pairs that share a vertex are never dropped (0 lies in both
+// intervals); a non-finite value never drops one (its comparisons are false).
 #include <cstdint>
 #include <span>
 
@@ -30,13 +39,12 @@
 namespace ccdlab {
 
 /// keep[i] = 0 when candidate i's triangles are proven to stay farther apart than the reach, 1 otherwise. SIMD
-/// (Highway, run-time dispatch, as plane_filter); the twelve points of a block of candidates are staged in L1,
-/// four at a time where 256-bit vectors exist (point_loads-inl.h), from `points` (the step's frames, a line a vertex).
-void triangle_filter(std::span<const FacePair> candidates, const Face* faces, const FramePoints* points,
+/// (Highway, run-time dispatch, as plane_filter); the six corners of a block of candidates are staged in L1,
+/// eight at a time where 256-bit vectors exist (one load a corner, both frames), from the step's float frames.
+void triangle_filter(std::span<const FacePair> candidates, const Face* faces, const FloatFrames& frames,
                      CullReach reach, std::uint8_t* keep);
 
 /// The same test for one candidate, plain C++: the reference every SIMD target is checked against.
-[[nodiscard]] bool triangle_pair_keeps(const Face& f, const Face& g, const Vec3* x_t0, const Vec3* x_t1,
-                                       CullReach reach);
+[[nodiscard]] bool triangle_pair_keeps(const Face& f, const Face& g, const FloatFrames& frames, CullReach reach);
 
 }  // namespace ccdlab

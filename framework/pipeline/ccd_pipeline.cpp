@@ -35,7 +35,7 @@ std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std
   const std::uint64_t records = std::max<std::uint64_t>(f * sizeof(GatherRecord), kLargeAllocation);  // one huge page at least
   const std::uint64_t ownership = (v + e) * sizeof(Index) + f + records;  // owners, masks, the gather's records
   const std::uint64_t orphans = std::uint64_t(orphan_pairs) * sizeof(EdgeEdgePair);
-  const std::uint64_t frames = 2 * v * sizeof(Vec3);
+  const std::uint64_t frames = 2 * v * sizeof(Vec3) + v * sizeof(FloatFramePoints);  // + stage 0's float copy
   return bvh + wide + feature_boxes + ownership + orphans + frames;
 }
 

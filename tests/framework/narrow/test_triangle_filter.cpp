@@ -1,6 +1,7 @@
 // Stage 0 (triangle_filter.hpp): every SIMD target agrees with the plain version, a culled candidate never has a
-// feature pair the tester reports, the reach is honoured to within its rounding, and the pipeline's contacts do
-// not change when stage 0 runs (test_narrow_phase.cpp compares every mode with brute force).
+// feature pair the tester reports (also where the float copy's rounding is as large as the triangles), the
+// reach is honoured to within its rounding, and the pipeline's contacts do not change when stage 0 runs
+// (test_narrow_phase.cpp compares every mode with brute force).
 #include <gtest/gtest.h>
 
 #include <hwy/targets.h>
@@ -25,15 +26,18 @@ struct RandomPairs {
   std::vector<Face> faces;
   std::vector<FacePair> candidates;
 };
-RandomPairs random_pairs(int n, unsigned seed, double motion) {
+/// `spread` > 0 places each pair at a random point of a cube that wide, so that far from the frames' centre the
+/// float copy errs by as much as the smallest triangles measure.
+RandomPairs random_pairs(int n, unsigned seed, double motion, double spread = 0) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1), scale(-4, 2);
   RandomPairs r;
   for (int i = 0; i < n; ++i) {
     const double s = std::pow(10.0, scale(rng));
+    const Vec3 at = spread * Vec3(u(rng), u(rng), u(rng));
     const Index base = Index(r.x0.size());
     for (int k = 0; k < 6; ++k) {
-      const Vec3 p = s * Vec3(u(rng), u(rng), 0.2 * u(rng));
+      const Vec3 p = at + s * Vec3(u(rng), u(rng), 0.2 * u(rng));
       r.x0.push_back(p);
       r.x1.push_back(p + motion * s * Vec3(u(rng), u(rng), u(rng)));
     }
@@ -47,26 +51,31 @@ RandomPairs random_pairs(int n, unsigned seed, double motion) {
   return r;
 }
 
+FloatFrames float_frames(const RandomPairs& r) {
+  FloatFrames frames;
+  frames.update(r.x0.data(), r.x1.data(), r.x0.size());
+  return frames;
+}
+
 TEST(TriangleFilter, EverySimdTargetAgreesWithThePlainVersion) {
   for (double motion : {0.0, 0.3}) {
     const RandomPairs r = random_pairs(4099, 5, motion);  // not a multiple of any vector or block size
+    const FloatFrames frames = float_frames(r);
     for (CullReach reach : {CullReach{0, 0}, CullReach{0, 2e-9}, CullReach{1e-3, 2e-9}}) {
       std::vector<std::uint8_t> expect(r.candidates.size());
       std::size_t culled = 0;
       for (std::size_t i = 0; i < expect.size(); ++i) {
         const FacePair& p = r.candidates[i];
-        culled += !(expect[i] = triangle_pair_keeps(r.faces[p.a], r.faces[p.b], r.x0.data(), r.x1.data(), reach));
+        culled += !(expect[i] = triangle_pair_keeps(r.faces[p.a], r.faces[p.b], frames, reach));
       }
       EXPECT_GT(culled, expect.size() / 10);  // the comparison means something: both answers are common
       EXPECT_LT(culled, expect.size() * 9 / 10);
-      std::vector<FramePoints> points(r.x0.size());
-      interleave_frames(r.x0.data(), r.x1.data(), points.size(), points.data());
       const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
       ASSERT_FALSE(targets.empty());
       for (std::int64_t t : targets) {
         hwy::SetSupportedTargetsForTest(t);
         std::vector<std::uint8_t> keep(expect.size(), 7);
-        triangle_filter(r.candidates, r.faces.data(), points.data(), reach, keep.data());
+        triangle_filter(r.candidates, r.faces.data(), frames, reach, keep.data());
         EXPECT_EQ(keep, expect) << hwy::TargetName(t) << " motion " << motion << " reach " << reach.abs;
       }
       hwy::SetSupportedTargetsForTest(0);
@@ -74,12 +83,14 @@ TEST(TriangleFilter, EverySimdTargetAgreesWithThePlainVersion) {
   }
 }
 
-TEST(TriangleFilter, NeverDropsACandidateWithAPairTheFloatTesterReports) {
-  for (double eta : {0.0, 0.02}) {
-    FloatTester tester(FloatTester::Params{eta});
-    const CullReach reach = *tester.cull_reach();
-    const RandomPairs r = random_pairs(20000, 17, 0.1);
-    int hits = 0, culled = 0;
+/// Over random pairs: every candidate with a pair the float tester reports is kept. Returns {hits, culled}.
+std::pair<int, int> check_never_drops_a_hit(double eta, double spread) {
+  FloatTester tester(FloatTester::Params{eta});
+  const CullReach reach = *tester.cull_reach();
+  const RandomPairs r = random_pairs(20000, 17, 0.1, spread);
+  const FloatFrames frames = float_frames(r);
+  int hits = 0, culled = 0;
+  {
     for (const FacePair& p : r.candidates) {
       const Face &f = r.faces[p.a], &g = r.faces[p.b];
       bool hit = false;
@@ -94,28 +105,50 @@ TEST(TriangleFilter, NeverDropsACandidateWithAPairTheFloatTesterReports) {
           const Index a0 = f[i], a1 = f[(i + 1) % 3], b0 = g[j], b1 = g[(j + 1) % 3];
           hit |= tester.edge_edge({r.x0[a0], r.x0[a1], r.x0[b0], r.x0[b1], r.x1[a0], r.x1[a1], r.x1[b0], r.x1[b1]}).hit;
         }
-      const bool keep = triangle_pair_keeps(f, g, r.x0.data(), r.x1.data(), reach);
+      const bool keep = triangle_pair_keeps(f, g, frames, reach);
       hits += hit;
       culled += !keep;
       if (hit) {
-        ASSERT_TRUE(keep) << "eta " << eta << " candidate " << p.a / 2;
+        EXPECT_TRUE(keep) << "eta " << eta << " spread " << spread << " candidate " << p.a / 2;
       }
     }
+  }
+  return {hits, culled};
+}
+
+TEST(TriangleFilter, NeverDropsACandidateWithAPairTheFloatTesterReports) {
+  for (double eta : {0.0, 0.02}) {
+    const auto [hits, culled] = check_never_drops_a_hit(eta, 0);
+    EXPECT_GT(hits, 1000);
+    EXPECT_GT(culled, 2000);
+  }
+}
+
+TEST(TriangleFilter, NeverDropsAHitWhereTheFloatCopyErrsAsMuchAsTheTrianglesMeasure) {
+  // Pairs spread over a cube of 2·10⁴: the float copy errs by ~10⁻³ there, the smallest pairs measure 10⁻⁴.
+  for (double eta : {0.0, 0.02}) {
+    const auto [hits, culled] = check_never_drops_a_hit(eta, 1e4);
     EXPECT_GT(hits, 1000);
     EXPECT_GT(culled, 2000);
   }
 }
 
 TEST(TriangleFilter, KeepsAPairWithinTheReachAndDropsOneJustBeyondIt) {
-  // Two parallel horizontal triangles, still, at distance d: kept at d = η(1 − 1e-6), dropped at η(1 + 1e-6).
+  // Two parallel horizontal triangles of size 1, still, at distance d: kept at d = η(1 − 10⁻⁶), dropped at
+  // η(1 + 0.05) — float rounding (16u·L̄ ≈ 2·10⁻⁶ here) is the margin. The same far from the origin: the float
+  // copy is taken about the frames' centre, so the offset costs no precision.
   const double eta = 1e-4;
   const CullReach reach{eta, 0};
-  for (double factor : {1 - 1e-6, 1 + 1e-6}) {
-    const double d = eta * factor;
-    const Positions x = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.2, 0.2, d}, {1.2, 0.2, d}, {0.2, 1.2, d}};
-    const bool keep = triangle_pair_keeps({0, 1, 2}, {3, 4, 5}, x.data(), x.data(), reach);
-    EXPECT_EQ(keep, factor < 1) << "d = η·" << factor;
-  }
+  for (const Vec3& offset : {Vec3(0, 0, 0), Vec3(1e7, -3e6, 5e5)})
+    for (double factor : {1 - 1e-6, 1 + 0.05}) {
+      const double d = eta * factor;
+      Positions x = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.2, 0.2, d}, {1.2, 0.2, d}, {0.2, 1.2, d}};
+      for (Vec3& p : x) p += offset;
+      FloatFrames frames;
+      frames.update(x.data(), x.data(), x.size());
+      const bool keep = triangle_pair_keeps({0, 1, 2}, {3, 4, 5}, frames, reach);
+      EXPECT_EQ(keep, factor < 1) << "d = η·" << factor << ", offset " << offset.transpose();
+    }
 }
 
 PipelineStrategies float_strategies(NarrowMode mode) {
