@@ -15,6 +15,10 @@ constexpr int kTriangleColumns = kTriangleCorners * 2 * 3;
 constexpr int triangle_column(int corner, int frame, int axis) { return (corner * 2 + frame) * 3 + axis; }
 // The gap's terms (triangle_filter.hpp): 16u per unit of L̄, the slack, and the floor.
 constexpr float kTriangleErrFactor = 16 * 0x1p-24f, kTriangleSlack = 1 + 0x1p-18f, kTriangleTiny = 1e-30f;
+// The 26-DOP's thirteen axes, as DopValue and dop_value compute them: x, y, z; x ± y, x ± z, y ± z; x + y ± z,
+// x − y + z, −x + y + z. ‖axis‖₁ scales the gap.
+constexpr int kDopAxisCount = 13;
+constexpr int dop_axis_norm1(int a) { return a < 3 ? 1 : a < 9 ? 2 : 3; }
 }  // namespace ccdlab::detail
 #endif
 
@@ -31,6 +35,7 @@ using detail::triangle_column;
 template <std::size_t kBlock>
 void StageTriangles(const std::int32_t* pairs, const std::int32_t* faces, const float* x01, std::size_t n,
                     float* block, std::size_t stride) {
+  n = std::min(n, kBlock);  // callers pass at most kBlock; said so the compiler sees the bound of `ids`
   std::int32_t ids[detail::kTriangleCorners][kBlock];
   for (std::size_t i = 0; i < n; ++i)
     for (int corner = 0; corner < detail::kTriangleCorners; ++corner)
@@ -75,50 +80,99 @@ struct Xyz {
   V x, y, z;
 };
 
-/// Whether the twelve points, projected on the axis n = B0×C0 + B1×C1 of the face with corners o, b, c (B, C its
-/// edges from o at t0 and t1), leave the two faces' intervals farther apart than the reach (triangle_filter.hpp).
-/// `gap_factor` = r·slack + 16u·L̄ + 8ε (L̄ bounds every |p − o| coordinate); operations in the order of
-/// triangle_pair_keeps.
-template <class D, class V = hn::Vec<D>>
-HWY_INLINE hn::Mask<D> SideCulled(D d, const Xyz<V> (&pt)[6][2], int o, int b, int c, int other, V gap_factor) {
-  const auto sub = [](const Xyz<V>& u, const Xyz<V>& v) {
-    return Xyz<V>{hn::Sub(u.x, v.x), hn::Sub(u.y, v.y), hn::Sub(u.z, v.z)};
-  };
-  const auto cross = [](const Xyz<V>& y, const Xyz<V>& z) {
-    return Xyz<V>{hn::Sub(hn::Mul(y.y, z.z), hn::Mul(y.z, z.y)), hn::Sub(hn::Mul(y.z, z.x), hn::Mul(y.x, z.z)),
-                  hn::Sub(hn::Mul(y.x, z.y), hn::Mul(y.y, z.x))};
-  };
-  const auto dot = [](const Xyz<V>& x, const Xyz<V>& c) {
-    return hn::Add(hn::Add(hn::Mul(x.x, c.x), hn::Mul(x.y, c.y)), hn::Mul(x.z, c.z));
-  };
-  const Xyz<V> n0 = cross(sub(pt[b][0], pt[o][0]), sub(pt[c][0], pt[o][0]));
-  const Xyz<V> n1 = cross(sub(pt[b][1], pt[o][1]), sub(pt[c][1], pt[o][1]));
-  const Xyz<V> n{hn::Add(n0.x, n1.x), hn::Add(n0.y, n1.y), hn::Add(n0.z, n1.z)};
-  // Every point relative to o at its own time: the face's (0, B, C at t0 and t1), then the other face's.
-  V own_lo = hn::Zero(d), own_hi = own_lo;
-  for (const int corner : {b, c})
-    for (int frame = 0; frame < 2; ++frame) {
-      const V s = dot(sub(pt[corner][frame], pt[o][frame]), n);
-      own_lo = hn::Min(own_lo, s), own_hi = hn::Max(own_hi, s);
-    }
-  V lo = dot(sub(pt[other][0], pt[o][0]), n), hi = lo;
-  for (int corner = other; corner < other + 3; ++corner)
-    for (int frame = 0; frame < 2; ++frame) {
-      if (corner == other && frame == 0) continue;
-      const V s = dot(sub(pt[corner][frame], pt[o][frame]), n);
-      lo = hn::Min(lo, s), hi = hn::Max(hi, s);
-    }
-  const V norm1 = hn::Add(hn::Add(hn::Abs(n.x), hn::Abs(n.y)), hn::Abs(n.z));
-  const V gap = hn::Add(hn::Mul(norm1, gap_factor), hn::Set(d, detail::kTriangleTiny));
-  return hn::Or(hn::Gt(hn::Sub(lo, own_hi), gap), hn::Gt(hn::Sub(own_lo, hi), gap));
+template <class V>
+HWY_INLINE Xyz<V> Sub(const Xyz<V>& u, const Xyz<V>& v) {
+  return Xyz<V>{hn::Sub(u.x, v.x), hn::Sub(u.y, v.y), hn::Sub(u.z, v.z)};
+}
+template <class V>
+HWY_INLINE Xyz<V> Cross(const Xyz<V>& y, const Xyz<V>& z) {
+  return Xyz<V>{hn::Sub(hn::Mul(y.y, z.z), hn::Mul(y.z, z.y)), hn::Sub(hn::Mul(y.z, z.x), hn::Mul(y.x, z.z)),
+                hn::Sub(hn::Mul(y.x, z.y), hn::Mul(y.y, z.x))};
+}
+template <class V>
+HWY_INLINE V Dot(const Xyz<V>& x, const Xyz<V>& c) {
+  return hn::Add(hn::Add(hn::Mul(x.x, c.x), hn::Mul(x.y, c.y)), hn::Mul(x.z, c.z));
+}
+/// The axis of two moving vectors: u0×v0 + u1×v1 (t0 and t1).
+template <class V>
+HWY_INLINE Xyz<V> MovingCross(const Xyz<V>& u0, const Xyz<V>& v0, const Xyz<V>& u1, const Xyz<V>& v1) {
+  const Xyz<V> n0 = Cross(u0, v0), n1 = Cross(u1, v1);
+  return Xyz<V>{hn::Add(n0.x, n1.x), hn::Add(n0.y, n1.y), hn::Add(n0.z, n1.z)};
 }
 
-/// Stage 0 on one vector of candidates, `pt` their corners: keep[j] for the first `lanes`. `abs_reach`,
-/// `rel_reach` and `error` (ε) as floats no smaller than the doubles they stand for.
+/// The twelve points relative to corner 0 at t0 (rel[0][0] = 0): what every axis projects.
+template <class V>
+struct Corners {
+  Xyz<V> pt[6][2];   ///< corners 0–2 of f, 3–5 of g; at t0, t1
+  Xyz<V> rel[6][2];  ///< pt − pt[0][0]
+};
+
+/// Whether one face stays beyond the other along an axis by more than `gap` at both ends of the step, hence
+/// throughout (triangle_filter.hpp). `project(corner, frame)`: the corner's projection on the axis.
+template <class D, class Project, class V = hn::Vec<D>>
+HWY_INLINE hn::Mask<D> Separated(D, const Project& project, V gap) {
+  V lo[2][2], hi[2][2];  // [face][frame]
+  for (int face = 0; face < 2; ++face)
+    for (int frame = 0; frame < 2; ++frame) {
+      lo[face][frame] = hi[face][frame] = project(3 * face, frame);
+      for (int k = 1; k < 3; ++k) {
+        const V s = project(3 * face + k, frame);
+        lo[face][frame] = hn::Min(lo[face][frame], s), hi[face][frame] = hn::Max(hi[face][frame], s);
+      }
+    }
+  const auto g_above = hn::And(hn::Gt(hn::Sub(lo[1][0], hi[0][0]), gap), hn::Gt(hn::Sub(lo[1][1], hi[0][1]), gap));
+  const auto g_below = hn::And(hn::Gt(hn::Sub(lo[0][0], hi[1][0]), gap), hn::Gt(hn::Sub(lo[0][1], hi[1][1]), gap));
+  return hn::Or(g_above, g_below);
+}
+
+/// Axis a of the 26-DOP (detail::kDopAxes) on a relative point: sums and differences of its coordinates, in the
+/// order of dop_value.
+template <class V>
+HWY_INLINE V DopValue(int a, const Xyz<V>& p) {
+  switch (a) {
+    case 0: return p.x;
+    case 1: return p.y;
+    case 2: return p.z;
+    case 3: return hn::Add(p.x, p.y);
+    case 4: return hn::Sub(p.x, p.y);
+    case 5: return hn::Add(p.x, p.z);
+    case 6: return hn::Sub(p.x, p.z);
+    case 7: return hn::Add(p.y, p.z);
+    case 8: return hn::Sub(p.y, p.z);
+    case 9: return hn::Add(hn::Add(p.x, p.y), p.z);
+    case 10: return hn::Sub(hn::Add(p.x, p.y), p.z);
+    case 11: return hn::Add(hn::Sub(p.x, p.y), p.z);
+    default: return hn::Sub(p.z, hn::Sub(p.x, p.y));
+  }
+}
+
+/// Stage 0 on one vector of candidates: culled lanes. The 26-DOP's axes first (their projections are sums of
+/// coordinates), then the two faces' normals; each step stops once every lane is culled.
 template <class D, class V = hn::Vec<D>>
-HWY_INLINE void TriangleTest(D d, const Xyz<V> (&pt)[6][2], float abs_reach, float rel_reach, float error,
-                             std::size_t lanes, std::uint8_t* keep) {
-  // The reach: L ≤ the twelve points' bounding-box extent in the 1-norm, + 8ε for the exact points (6ε suffice).
+HWY_INLINE hn::Mask<D> TriangleCulled(D d, const Corners<V>& c, V gap_factor) {
+  const V tiny = hn::Set(d, detail::kTriangleTiny);
+  auto culled = hn::FirstN(d, 0);
+  for (int a = 0; a < detail::kDopAxisCount && !hn::AllTrue(d, culled); ++a) {
+    const V gap = hn::Add(hn::Mul(hn::Set(d, float(detail::dop_axis_norm1(a))), gap_factor), tiny);
+    culled = hn::Or(culled, Separated(d, [&](int corner, int frame) { return DopValue(a, c.rel[corner][frame]); }, gap));
+  }
+  for (int o = 0; o < 6 && !hn::AllTrue(d, culled); o += 3) {
+    const auto& pt = c.pt;
+    const Xyz<V> n = MovingCross(Sub(pt[o + 1][0], pt[o][0]), Sub(pt[o + 2][0], pt[o][0]),
+                                 Sub(pt[o + 1][1], pt[o][1]), Sub(pt[o + 2][1], pt[o][1]));
+    const V norm1 = hn::Add(hn::Add(hn::Abs(n.x), hn::Abs(n.y)), hn::Abs(n.z));
+    const V gap = hn::Add(hn::Mul(norm1, gap_factor), tiny);
+    culled = hn::Or(culled, Separated(d, [&](int corner, int frame) { return Dot(c.rel[corner][frame], n); }, gap));
+  }
+  return culled;
+}
+
+/// r·slack + 16u·L̄ + 8ε for one vector of candidates, r = abs + rel·(L̄ + 8ε): L ≤ the twelve points'
+/// bounding-box extent in the 1-norm, + 6ε for the exact points. `abs_reach`, `rel_reach` and `error` (ε) as
+/// floats no smaller than the doubles they stand for.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V GapFactor(D d, const Corners<V>& c, float abs_reach, float rel_reach, float error) {
+  const auto& pt = c.pt;
   V lo[3] = {pt[0][0].x, pt[0][0].y, pt[0][0].z}, hi[3] = {lo[0], lo[1], lo[2]};
   for (int corner = 0; corner < 6; ++corner)
     for (int frame = 0; frame < 2; ++frame) {
@@ -127,16 +181,11 @@ HWY_INLINE void TriangleTest(D d, const Xyz<V> (&pt)[6][2], float abs_reach, flo
       hi[0] = hn::Max(hi[0], p.x), hi[1] = hn::Max(hi[1], p.y), hi[2] = hn::Max(hi[2], p.z);
     }
   const V extent = hn::Add(hn::Add(hn::Sub(hi[0], lo[0]), hn::Sub(hi[1], lo[1])), hn::Sub(hi[2], lo[2]));
-  const V eps = hn::Set(d, error);
-  const V reach = hn::Add(hn::Set(d, abs_reach), hn::Mul(hn::Set(d, rel_reach), hn::Add(extent, hn::Mul(hn::Set(d, 8.0f), eps))));
-  const V gap_factor = hn::Add(hn::Add(hn::Mul(reach, hn::Set(d, detail::kTriangleSlack)),
-                                       hn::Mul(hn::Set(d, detail::kTriangleErrFactor), extent)),
-                               hn::Mul(hn::Set(d, 8.0f), eps));
-  auto culled = SideCulled(d, pt, 0, 1, 2, 3, gap_factor);
-  if (!hn::AllTrue(d, culled)) culled = hn::Or(culled, SideCulled(d, pt, 3, 4, 5, 0, gap_factor));
-  std::uint8_t bits[8] = {};
-  hn::StoreMaskBits(d, culled, bits);
-  for (std::size_t j = 0; j < lanes; ++j) keep[j] = std::uint8_t(((bits[j / 8] >> (j % 8)) & 1) ^ 1);
+  const V eps8 = hn::Mul(hn::Set(d, 8.0f), hn::Set(d, error));
+  const V reach = hn::Add(hn::Set(d, abs_reach), hn::Mul(hn::Set(d, rel_reach), hn::Add(extent, eps8)));
+  return hn::Add(hn::Add(hn::Mul(reach, hn::Set(d, detail::kTriangleSlack)),
+                         hn::Mul(hn::Set(d, detail::kTriangleErrFactor), extent)),
+                 eps8);
 }
 
 void TriangleFilter(const std::int32_t* pairs, const std::int32_t* faces, const float* x01, std::size_t n,
@@ -149,16 +198,21 @@ void TriangleFilter(const std::int32_t* pairs, const std::int32_t* faces, const 
   for (std::size_t b = 0; b < n; b += kBlock) {
     const std::size_t m = std::min(kBlock, n - b);
     StageTriangles<kBlock>(pairs + 2 * b, faces, x01, m, block, kStride);
-    if (m % N != 0)  // the last vector's lanes past the end: zeros, never reported
-      for (int c = 0; c < kTriangleColumns; ++c) std::fill_n(block + kStride * std::size_t(c) + m, N - m % N, 0.0f);
+    if (m % N != 0)  // the last vector's lanes past the end: zeros, never culled (nor reported)
+      for (int col = 0; col < kTriangleColumns; ++col) std::fill_n(block + kStride * std::size_t(col) + m, N - m % N, 0.0f);
     for (std::size_t i = 0; i < m; i += N) {
-      Xyz<V> pt[6][2];
+      Corners<V> c;
       for (int corner = 0; corner < 6; ++corner)
         for (int frame = 0; frame < 2; ++frame) {
           const float* col = block + kStride * std::size_t(triangle_column(corner, frame, 0)) + i;
-          pt[corner][frame] = {hn::Load(d, col), hn::Load(d, col + kStride), hn::Load(d, col + 2 * kStride)};
+          c.pt[corner][frame] = {hn::Load(d, col), hn::Load(d, col + kStride), hn::Load(d, col + 2 * kStride)};
         }
-      TriangleTest(d, pt, abs_reach, rel_reach, error, std::min(N, m - i), keep + b + i);
+      for (int corner = 0; corner < 6; ++corner)
+        for (int frame = 0; frame < 2; ++frame) c.rel[corner][frame] = Sub(c.pt[corner][frame], c.pt[0][0]);
+      const auto culled = TriangleCulled(d, c, GapFactor(d, c, abs_reach, rel_reach, error));
+      std::uint8_t bits[8] = {};
+      hn::StoreMaskBits(d, culled, bits);
+      for (std::size_t j = 0; j < std::min(N, m - i); ++j) keep[b + i + j] = std::uint8_t(((bits[j / 8] >> (j % 8)) & 1) ^ 1);
     }
   }
 }
@@ -202,41 +256,57 @@ struct Vec3f {
   float x, y, z;
 };
 Vec3f operator-(const Vec3f& a, const Vec3f& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+Vec3f cross(const Vec3f& y, const Vec3f& z) {
+  return Vec3f{y.y * z.z - y.z * z.y, y.z * z.x - y.x * z.z, y.x * z.y - y.y * z.x};
+}
+float dot(const Vec3f& x, const Vec3f& c) { return (x.x * c.x + x.y * c.y) + x.z * c.z; }
+Vec3f moving_cross(const Vec3f& u0, const Vec3f& v0, const Vec3f& u1, const Vec3f& v1) {
+  const Vec3f n0 = cross(u0, v0), n1 = cross(u1, v1);
+  return {n0.x + n1.x, n0.y + n1.y, n0.z + n1.z};
+}
 
-/// SideCulled for one candidate, the same operations in the same order.
-bool side_culled(const Vec3f (&pt)[6][2], int o, int b, int c, int other, float gap_factor) {
-  const auto cross = [](const Vec3f& y, const Vec3f& z) {
-    return Vec3f{y.y * z.z - y.z * z.y, y.z * z.x - y.x * z.z, y.x * z.y - y.y * z.x};
-  };
-  const auto dot = [](const Vec3f& x, const Vec3f& c) { return (x.x * c.x + x.y * c.y) + x.z * c.z; };
-  const Vec3f n0 = cross(pt[b][0] - pt[o][0], pt[c][0] - pt[o][0]);
-  const Vec3f n1 = cross(pt[b][1] - pt[o][1], pt[c][1] - pt[o][1]);
-  const Vec3f n{n0.x + n1.x, n0.y + n1.y, n0.z + n1.z};
-  float own_lo = 0, own_hi = 0;
-  for (const int corner : {b, c})
+/// Separated for one candidate, the same operations in the same order (`value[corner][frame]`).
+bool separated(const float (&value)[6][2], float gap) {
+  float lo[2][2], hi[2][2];
+  for (int face = 0; face < 2; ++face)
     for (int frame = 0; frame < 2; ++frame) {
-      const float s = dot(pt[corner][frame] - pt[o][frame], n);
-      own_lo = std::min(own_lo, s), own_hi = std::max(own_hi, s);
+      lo[face][frame] = hi[face][frame] = value[3 * face][frame];
+      for (int k = 1; k < 3; ++k) {
+        const float s = value[3 * face + k][frame];
+        lo[face][frame] = std::min(lo[face][frame], s), hi[face][frame] = std::max(hi[face][frame], s);
+      }
     }
-  float lo = dot(pt[other][0] - pt[o][0], n), hi = lo;
-  for (int corner = other; corner < other + 3; ++corner)
-    for (int frame = 0; frame < 2; ++frame) {
-      if (corner == other && frame == 0) continue;
-      const float s = dot(pt[corner][frame] - pt[o][frame], n);
-      lo = std::min(lo, s), hi = std::max(hi, s);
-    }
-  const float norm1 = (std::abs(n.x) + std::abs(n.y)) + std::abs(n.z);
-  const float gap = norm1 * gap_factor + detail::kTriangleTiny;
-  return lo - own_hi > gap || own_lo - hi > gap;
+  return (lo[1][0] - hi[0][0] > gap && lo[1][1] - hi[0][1] > gap) ||
+         (lo[0][0] - hi[1][0] > gap && lo[0][1] - hi[1][1] > gap);
+}
+
+/// DopValue for one point.
+float dop_value(int a, const Vec3f& p) {
+  switch (a) {
+    case 0: return p.x;
+    case 1: return p.y;
+    case 2: return p.z;
+    case 3: return p.x + p.y;
+    case 4: return p.x - p.y;
+    case 5: return p.x + p.z;
+    case 6: return p.x - p.z;
+    case 7: return p.y + p.z;
+    case 8: return p.y - p.z;
+    case 9: return (p.x + p.y) + p.z;
+    case 10: return (p.x + p.y) - p.z;
+    case 11: return (p.x - p.y) + p.z;
+    default: return p.z - (p.x - p.y);
+  }
 }
 }  // namespace
 
 bool triangle_pair_keeps(const Face& f, const Face& g, const FloatFrames& frames, CullReach reach) {
-  Vec3f pt[6][2];
+  Vec3f pt[6][2], rel[6][2];
   for (int k = 0; k < 6; ++k) {
     const FloatFramePoints& p = frames.points[std::size_t(k < 3 ? f[k] : g[k - 3])];
     pt[k][0] = {p.t0[0], p.t0[1], p.t0[2]}, pt[k][1] = {p.t1[0], p.t1[1], p.t1[2]};
   }
+  for (int k = 0; k < 6; ++k) rel[k][0] = pt[k][0] - pt[0][0], rel[k][1] = pt[k][1] - pt[0][0];
   float lo[3] = {pt[0][0].x, pt[0][0].y, pt[0][0].z}, hi[3] = {lo[0], lo[1], lo[2]};
   for (const auto& corner : pt)
     for (const Vec3f& p : corner) {
@@ -244,10 +314,22 @@ bool triangle_pair_keeps(const Face& f, const Face& g, const FloatFrames& frames
       hi[0] = std::max(hi[0], p.x), hi[1] = std::max(hi[1], p.y), hi[2] = std::max(hi[2], p.z);
     }
   const float extent = ((hi[0] - lo[0]) + (hi[1] - lo[1])) + (hi[2] - lo[2]);
-  const float eps = float_at_least(frames.error);
-  const float r = float_at_least(reach.abs) + float_at_least(reach.rel) * (extent + 8.0f * eps);
-  const float gap_factor = (r * detail::kTriangleSlack + detail::kTriangleErrFactor * extent) + 8.0f * eps;
-  return !(side_culled(pt, 0, 1, 2, 3, gap_factor) || side_culled(pt, 3, 4, 5, 0, gap_factor));
+  const float eps8 = 8.0f * float_at_least(frames.error);
+  const float r = float_at_least(reach.abs) + float_at_least(reach.rel) * (extent + eps8);
+  const float gap_factor = (r * detail::kTriangleSlack + detail::kTriangleErrFactor * extent) + eps8;
+  float value[6][2];
+  for (int a = 0; a < detail::kDopAxisCount; ++a) {  // the 26-DOP's axes
+    for (int k = 0; k < 6; ++k) value[k][0] = dop_value(a, rel[k][0]), value[k][1] = dop_value(a, rel[k][1]);
+    if (separated(value, float(detail::dop_axis_norm1(a)) * gap_factor + detail::kTriangleTiny)) return false;
+  }
+  for (int o = 0; o < 6; o += 3) {  // the two face axes
+    const Vec3f n = moving_cross(pt[o + 1][0] - pt[o][0], pt[o + 2][0] - pt[o][0], pt[o + 1][1] - pt[o][1],
+                                 pt[o + 2][1] - pt[o][1]);
+    const float norm1 = (std::abs(n.x) + std::abs(n.y)) + std::abs(n.z);
+    for (int k = 0; k < 6; ++k) value[k][0] = dot(rel[k][0], n), value[k][1] = dot(rel[k][1], n);
+    if (separated(value, norm1 * gap_factor + detail::kTriangleTiny)) return false;
+  }
+  return true;
 }
 
 }  // namespace ccdlab

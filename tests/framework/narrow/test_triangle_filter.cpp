@@ -1,6 +1,7 @@
 // Stage 0 (triangle_filter.hpp): every SIMD target agrees with the plain version, a culled candidate never has a
 // feature pair the tester reports (also where the float copy's rounding is as large as the triangles), the
-// reach is honoured to within its rounding, and the pipeline's contacts do not change when stage 0 runs
+// reach is honoured to within its rounding, faces that pass each other are kept while faces apart at both ends
+// are dropped, and the pipeline's contacts do not change when stage 0 runs
 // (test_narrow_phase.cpp compares every mode with brute force).
 #include <gtest/gtest.h>
 
@@ -149,6 +150,25 @@ TEST(TriangleFilter, KeepsAPairWithinTheReachAndDropsOneJustBeyondIt) {
       const bool keep = triangle_pair_keeps({0, 1, 2}, {3, 4, 5}, frames, reach);
       EXPECT_EQ(keep, factor < 1) << "d = η·" << factor << ", offset " << offset.transpose();
     }
+}
+
+TEST(TriangleFilter, SeparatesAtBothEndsWhereTheSweptVolumesOverlap) {
+  // f in the plane y = 0 (an edge along x at z = 0, its apex below), g in the plane x = 0 (an edge along y at
+  // z = d, its apex above): each face's plane cuts the other, so neither normal separates them; the z axis does
+  // when d > 0, at both ends of the step. Both move by 3 along x, so their swept boxes overlap whatever d is.
+  // At d < 0 they intersect throughout. And g moving from d to −d passes through f: never dropped.
+  const Positions x0 = {{-1, 0, 0}, {1, 0, 0}, {0, 0, -1}, {0, -1, 0}, {0, 1, 0}, {0, 0, 1}};
+  const auto moved = [&](double d_start, double d_end) {
+    Positions a = x0, b = x0;
+    for (int k = 3; k < 6; ++k) a[k].z() += d_start, b[k].z() += d_end;
+    for (Vec3& p : b) p.x() += 3;
+    FloatFrames frames;
+    frames.update(a.data(), b.data(), a.size());
+    return triangle_pair_keeps({0, 1, 2}, {3, 4, 5}, frames, CullReach{0, 2e-9});
+  };
+  EXPECT_FALSE(moved(0.01, 0.01));
+  EXPECT_TRUE(moved(-0.01, -0.01));
+  EXPECT_TRUE(moved(0.5, -0.5));
 }
 
 PipelineStrategies float_strategies(NarrowMode mode) {
