@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cstddef>
 #include <limits>
+#include <span>
 
 #include "framework/geometry/vec.hpp"
+#include "framework/mesh/tri_mesh.hpp"
 #include "framework/util/uninitialized_vector.hpp"
 
 namespace ccdlab {
@@ -40,6 +42,14 @@ struct alignas(32) FloatFramePoints {
 };
 static_assert(sizeof(FloatFramePoints) == 32, "two vertices a cache line");
 
+/// Face f's bounding box at each end of the step, from its float corners: lo x, y, z, a zero, hi x, y, z, a zero
+/// at t0, then at t1. Stage 0's first pass reads these: one line a face instead of three corners.
+struct alignas(64) FloatFaceBoxes {
+  float t0[8];
+  float t1[8];
+};
+static_assert(sizeof(FloatFaceBoxes) == 64, "one cache line a face");
+
 /// The step's two frames in float, moved to an origin at the centre of their box (so that the rounding is
 /// relative to the scene's size, not to its distance from 0). A translation moves no distance, so a separation
 /// proven on the exact translated points holds for the mesh; the float copy lies within `error` of them in every
@@ -48,8 +58,10 @@ struct FloatFrames {
   Vec3 origin = Vec3::Zero();
   double error = 0;  ///< ≥ |float(x − origin) − (x − origin)|, every coordinate of every vertex and frame
   UninitializedVector<FloatFramePoints> points;
+  UninitializedVector<FloatFaceBoxes> boxes;  ///< per face, from `points` (exact: minima and maxima)
 
-  void update(const Vec3* x_t0, const Vec3* x_t1, std::size_t n) {
+  /// The n vertices' float copy, then the faces' boxes.
+  void update(const Vec3* x_t0, const Vec3* x_t1, std::size_t n, std::span<const Face> faces) {
     Vec3 lo = n ? x_t0[0] : Vec3::Zero(), hi = lo;
     for (std::size_t v = 0; v < n; ++v) {
       lo = lo.cwiseMin(x_t0[v]).cwiseMin(x_t1[v]);
@@ -70,6 +82,17 @@ struct FloatFrames {
     // |float(q) − q| ≤ 2⁻²⁴|q| and |q − (x − origin)| ≤ 2⁻⁵³|x − origin| ≤ 2⁻⁵²|q|; the factor covers this
     // product's own rounding. A non-finite coordinate makes the error non-finite, and stage 0 then culls nothing.
     error = finite ? radius * (0x1p-24 + 0x1p-52) * (1 + 0x1p-40) : std::numeric_limits<double>::infinity();
+    boxes.resize(faces.size());
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const FloatFramePoints &a = points[std::size_t(faces[f][0])], &b = points[std::size_t(faces[f][1])],
+                             &c = points[std::size_t(faces[f][2])];
+      FloatFaceBoxes& box = boxes[f];
+      for (int j = 0; j < 3; ++j) {
+        box.t0[j] = std::min(std::min(a.t0[j], b.t0[j]), c.t0[j]), box.t0[4 + j] = std::max(std::max(a.t0[j], b.t0[j]), c.t0[j]);
+        box.t1[j] = std::min(std::min(a.t1[j], b.t1[j]), c.t1[j]), box.t1[4 + j] = std::max(std::max(a.t1[j], b.t1[j]), c.t1[j]);
+      }
+      box.t0[3] = box.t0[7] = box.t1[3] = box.t1[7] = 0;
+    }
   }
 };
 

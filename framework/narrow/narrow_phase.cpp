@@ -84,7 +84,7 @@ void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const
   bounds_ = &bounds;
   triangle_stage_ = options_.mode == NarrowMode::batched && tester_.cull_reach() &&
                     (steps_ % kTriangleRemeasure == 0 || triangle_cull_rate_ >= kTriangleCullPays);
-  if (triangle_stage_) float_frames_.update(x_t0.data(), x_t1.data(), x_t0.size());
+  if (triangle_stage_) float_frames_.update(x_t0.data(), x_t1.data(), x_t0.size(), mesh_.faces());
 }
 
 void NarrowPhase::end_step(const NarrowCounters& step) {

@@ -14,8 +14,10 @@
 // −x + y + z: the projections are sums of coordinates), then each face's normal at both ends, B0×C0 + B1×C1
 // (B, C its edges from its first corner). Any axis is valid. The swept volumes the traversal tested are unions
 // over the step; at each end the two faces are often far apart (99.99% of the simulated cloth_ball's candidates,
-// 94% of n-body's: docs/narrow-phase.md). Points are taken relative to one corner (f's first at t0), so the
-// rounding scales with the pair's size, not with the scene's.
+// 94% of n-body's: docs/narrow-phase.md). x, y and z run first on every candidate, from each face's box at both
+// ends (FloatFaceBoxes: a line a face); the other axes only on what they leave. On x, y and z a projection is a
+// coordinate, exact; on the others points are taken relative to one corner (f's first at t0), so the rounding
+// scales with the pair's size, not with the scene's.
 //
 // The reach's relative part uses the twelve points' (both faces, both frames) bounding-box extent in the 1-norm,
 // L̄: it bounds the box diagonal of every feature pair's query (CullReach's L), so r is never below any of them.
@@ -27,7 +29,8 @@
 //   within 2ε: each projection moves by at most 2ε‖n‖₁, and each gap by 4ε‖n‖₁. The exact points' L̄ is at most
 //   the float points' + 6ε.
 // - The rounding (u = 2⁻²⁴). Each relative coordinate is one subtraction, then n is used as given (any axis is
-//   valid): a projection errs by at most 4u·L̄·‖n‖₁ (a dot product; a sum of two or three coordinates errs less).
+//   valid): a projection errs by at most 4u·L̄·‖n‖₁ (a dot product; a sum of two or three coordinates errs less;
+//   a coordinate not at all).
 // A pair is dropped when a gap exceeds ‖n‖₁·(r·s + 16u·L̄ + 8ε) + 10⁻³⁰ with r = abs + rel·(L̄ + 8ε): twice each
 // error, the slack s = 1 + 2⁻¹⁸ for the rounding of r, ‖n‖₁ and the gap itself (≥ 10u), and a floor above any
 // error of an underflowed product. ‖n‖₁ ≥ |n|. Pairs that share a vertex are never dropped (their gap is 0); a

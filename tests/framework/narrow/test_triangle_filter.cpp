@@ -52,9 +52,11 @@ RandomPairs random_pairs(int n, unsigned seed, double motion, double spread = 0)
   return r;
 }
 
+const std::vector<Face> kTwoFaces = {{0, 1, 2}, {3, 4, 5}};
+
 FloatFrames float_frames(const RandomPairs& r) {
   FloatFrames frames;
-  frames.update(r.x0.data(), r.x1.data(), r.x0.size());
+  frames.update(r.x0.data(), r.x1.data(), r.x0.size(), r.faces);
   return frames;
 }
 
@@ -146,7 +148,7 @@ TEST(TriangleFilter, KeepsAPairWithinTheReachAndDropsOneJustBeyondIt) {
       Positions x = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.2, 0.2, d}, {1.2, 0.2, d}, {0.2, 1.2, d}};
       for (Vec3& p : x) p += offset;
       FloatFrames frames;
-      frames.update(x.data(), x.data(), x.size());
+      frames.update(x.data(), x.data(), x.size(), kTwoFaces);
       const bool keep = triangle_pair_keeps({0, 1, 2}, {3, 4, 5}, frames, reach);
       EXPECT_EQ(keep, factor < 1) << "d = η·" << factor << ", offset " << offset.transpose();
     }
@@ -163,7 +165,7 @@ TEST(TriangleFilter, SeparatesAtBothEndsWhereTheSweptVolumesOverlap) {
     for (int k = 3; k < 6; ++k) a[k].z() += d_start, b[k].z() += d_end;
     for (Vec3& p : b) p.x() += 3;
     FloatFrames frames;
-    frames.update(a.data(), b.data(), a.size());
+    frames.update(a.data(), b.data(), a.size(), kTwoFaces);
     return triangle_pair_keeps({0, 1, 2}, {3, 4, 5}, frames, CullReach{0, 2e-9});
   };
   EXPECT_FALSE(moved(0.01, 0.01));
