@@ -17,9 +17,11 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 /// Stage 0 runs in a step when the last step that ran it culled at least this share of its candidates: below,
-/// it costs more than the later stages save (docs/narrow-phase.md, "Stage 0"). It runs on the first step and
-/// every kTriangleRemeasure-th, to measure again. A rule per step, from whole-step counts, keeps every work
-/// counter independent of how the candidates are cut into chunks (schedulers, threads, slices).
+/// it costs more than the later stages save (docs/narrow-phase.md, "Stage 0"); and when that step had at least
+/// as many candidates as the mesh has faces: its float copy of the frames and the faces' boxes are a pass over
+/// the mesh each step, which a few candidates do not repay (the funnel: 11K candidates, 18K faces). It runs on
+/// the first step and every kTriangleRemeasure-th, to measure again. A rule per step, from whole-step counts,
+/// keeps every work counter independent of how the candidates are cut into chunks (schedulers, threads, slices).
 constexpr double kTriangleCullPays = 0.7;
 constexpr std::uint64_t kTriangleRemeasure = 8;
 std::uint64_t ns_since(Clock::time_point t) {
@@ -83,12 +85,16 @@ void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const
   x_t1_ = &x_t1;
   bounds_ = &bounds;
   triangle_stage_ = options_.mode == NarrowMode::batched && tester_.cull_reach() &&
-                    (steps_ % kTriangleRemeasure == 0 || triangle_cull_rate_ >= kTriangleCullPays);
+                    (steps_ % kTriangleRemeasure == 0 ||
+                     (triangle_cull_rate_ >= kTriangleCullPays && triangle_candidates_ >= mesh_.faces().size()));
   if (triangle_stage_) float_frames_.update(x_t0.data(), x_t1.data(), x_t0.size(), mesh_.faces());
 }
 
 void NarrowPhase::end_step(const NarrowCounters& step) {
-  if (step.triangle_tested > 0) triangle_cull_rate_ = double(step.triangle_culled) / double(step.triangle_tested);
+  if (step.triangle_tested > 0) {
+    triangle_cull_rate_ = double(step.triangle_culled) / double(step.triangle_tested);
+    triangle_candidates_ = step.triangle_tested;
+  }
   ++steps_;
 }
 

@@ -98,6 +98,7 @@ class NarrowPhase {
   bool triangle_stage_ = false;       ///< stage 0 runs in this step (begin_step)
   FloatFrames float_frames_;          ///< what stage 0 reads, made in begin_step when it runs
   double triangle_cull_rate_ = 0;     ///< its cull rate in the last step that ran it
+  std::uint64_t triangle_candidates_ = 0;  ///< the candidates of that step
   std::uint64_t steps_ = 0;
 };
 
