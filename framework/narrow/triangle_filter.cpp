@@ -218,13 +218,12 @@ HWY_INLINE hn::Mask<D> BoxesCulled(D d, const float* block, std::size_t stride, 
   const auto at = [&](int face, int frame, int side, int axis) {
     return hn::Load(d, block + stride * std::size_t(detail::box_column(face, frame, side, axis)) + i);
   };
-  V extent = hn::Zero(d);
   V lo[3], hi[3];
   for (int axis = 0; axis < 3; ++axis) {
     lo[axis] = hn::Min(hn::Min(at(0, 0, 0, axis), at(0, 1, 0, axis)), hn::Min(at(1, 0, 0, axis), at(1, 1, 0, axis)));
     hi[axis] = hn::Max(hn::Max(at(0, 0, 1, axis), at(0, 1, 1, axis)), hn::Max(at(1, 0, 1, axis), at(1, 1, 1, axis)));
   }
-  extent = hn::Add(hn::Add(hn::Sub(hi[0], lo[0]), hn::Sub(hi[1], lo[1])), hn::Sub(hi[2], lo[2]));
+  const V extent = hn::Add(hn::Add(hn::Sub(hi[0], lo[0]), hn::Sub(hi[1], lo[1])), hn::Sub(hi[2], lo[2]));
   const V gap = hn::Add(hn::Mul(hn::Set(d, 1.0f), GapFactorOf(d, extent, abs_reach, rel_reach, error)),
                         hn::Set(d, detail::kTriangleTiny));
   for (int axis = 0; axis < 3; ++axis) {
