@@ -23,6 +23,8 @@ nlohmann::json step_json(const StepResult& r) {
             {"orphan_tests", c.orphan_tests},
             {"restructured", c.restructured},
             {"orphans_culled", c.orphans_culled},
+            {"orphans_carried", c.orphans_carried},
+            {"candidates_gathered", c.candidates_gathered},
             {"tests_filtered", c.tests_filtered},
             {"tests_fallback", c.tests_fallback}}},
           {"narrow_stages",  // pairs removed by each culling stage; thread-time of each stage

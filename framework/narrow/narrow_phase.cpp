@@ -24,6 +24,13 @@ using Clock = std::chrono::steady_clock;
 /// keeps every work counter independent of how the candidates are cut into chunks (schedulers, threads, slices).
 constexpr double kTriangleCullPays = 0.7;
 constexpr std::uint64_t kTriangleRemeasure = 8;
+/// The candidates carry the orphans (Representatives::append_pairs) in a step when the last step gathered at
+/// most this many candidates per orphan. A gathered candidate then checks two signatures and now and then reads
+/// a list, and brings the orphans it carries into the batch (rod-twist: 731K candidates carry 174K orphans); an
+/// orphan left in the set costs its stage 1 and, when that keeps it, stages 2–4 (docs/narrow-phase.md, "The
+/// candidates carry the orphans": rod-twist, 0.76 candidates an orphan, lost; n-body, 0.19, gained). A rule per
+/// step from whole-step counts, as stage 0's.
+constexpr double kCarryPays = 0.3;
 std::uint64_t ns_since(Clock::time_point t) {
   return std::uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t).count());
 }
@@ -88,6 +95,14 @@ void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const
                     (steps_ % kTriangleRemeasure == 0 ||
                      (triangle_cull_rate_ >= kTriangleCullPays && triangle_candidates_ >= mesh_.faces().size()));
   if (triangle_stage_) float_frames_.update(x_t0.data(), x_t1.data(), x_t0.size(), mesh_.faces());
+  const OrphanSet& orphans = reps_.orphans();
+  switch (options_.carry_orphans) {
+    case OrphanCarry::always: carry_orphans_ = reps_.carries_orphans(); break;
+    case OrphanCarry::never: carry_orphans_ = false; break;
+    case OrphanCarry::when_it_pays:
+      carry_orphans_ = options_.mode == NarrowMode::batched && reps_.carries_orphans() && steps_ > 0 &&
+                       double(gathered_candidates_) <= kCarryPays * double(orphans.vf.size() + orphans.ee.size());
+  }
 }
 
 void NarrowPhase::end_step(const NarrowCounters& step) {
@@ -95,6 +110,7 @@ void NarrowPhase::end_step(const NarrowCounters& step) {
     triangle_cull_rate_ = double(step.triangle_culled) / double(step.triangle_tested);
     triangle_candidates_ = step.triangle_tested;
   }
+  gathered_candidates_ = step.candidates_gathered;
   ++steps_;
 }
 
@@ -103,7 +119,8 @@ void NarrowPhase::gather(std::span<const FacePair> candidates, NarrowScratch& sc
   FeatureBatch& batch = scratch.batch;
   const auto reach = tester_.cull_reach();
   if (!cull || !triangle_stage_ || !reach || candidates.empty()) {
-    reps_.append_pairs(candidates, batch.vf, batch.ee);
+    c.candidates_gathered += candidates.size();
+    c.orphans_carried += reps_.append_pairs(candidates, batch.vf, batch.ee, true, carry_orphans_);
     return;
   }
   const auto t = Clock::now();
@@ -114,7 +131,8 @@ void NarrowPhase::gather(std::span<const FacePair> candidates, NarrowScratch& sc
   c.triangle_tested += candidates.size();
   c.triangle_culled += candidates.size() - scratch.candidates.size();
   c.triangle_ns += ns_since(t);
-  reps_.append_pairs(scratch.candidates, batch.vf, batch.ee);
+  c.candidates_gathered += scratch.candidates.size();
+  c.orphans_carried += reps_.append_pairs(scratch.candidates, batch.vf, batch.ee, true, carry_orphans_);
 }
 
 void NarrowPhase::gather_orphans(std::span<const VertexFacePair> vf, std::span<const EdgeEdgePair> ee,

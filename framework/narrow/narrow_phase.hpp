@@ -32,9 +32,14 @@ enum class NarrowMode { scalar, batched };
 /// "scalar" | "batched"; throws Error naming the valid values otherwise.
 [[nodiscard]] NarrowMode parse_narrow_mode(std::string_view name);
 
+/// Whether the candidates carry the fixed rule's orphans (Representatives::append_pairs): in the steps where it
+/// pays (batched mode; the rule is in narrow_phase.cpp), or in every step, or never (tests compare the three).
+enum class OrphanCarry { when_it_pays, always, never };
+
 struct NarrowOptions {
   NarrowMode mode = NarrowMode::batched;
   RepresentativeRule representative = RepresentativeRule::fixed;  // measured faster with batched culling (docs/performance.md)
+  OrphanCarry carry_orphans = OrphanCarry::when_it_pays;
 };
 
 class NarrowPhase {
@@ -46,6 +51,11 @@ class NarrowPhase {
 
   [[nodiscard]] const NarrowOptions& options() const { return options_; }
   [[nodiscard]] const Representatives& representatives() const { return reps_; }
+  /// The orphans this step leaves to the pipeline's orphan loop: all of them, or in a step where the
+  /// candidates carry the rest (begin_step), those no face pair can carry.
+  [[nodiscard]] const OrphanSet& orphans_to_test() const {
+    return carry_orphans_ ? reps_.uncarried_orphans() : reps_.orphans();
+  }
 
   /// Sets the two frames of the step and every vertex's swept 26-DOP over it (stage 1's bounds, updated by
   /// the caller for this step with the tester's thickness: the pipeline's swept volumes). All three must
@@ -99,6 +109,8 @@ class NarrowPhase {
   FloatFrames float_frames_;          ///< what stage 0 reads, made in begin_step when it runs
   double triangle_cull_rate_ = 0;     ///< its cull rate in the last step that ran it
   std::uint64_t triangle_candidates_ = 0;  ///< the candidates of that step
+  bool carry_orphans_ = false;        ///< the candidates carry the orphans in this step (begin_step)
+  std::uint64_t gathered_candidates_ = 0;  ///< the candidates the last step gathered
   std::uint64_t steps_ = 0;
 };
 

@@ -21,14 +21,75 @@ Index Representatives::face_of_edge(Index e) const {
   return rule_ == RepresentativeRule::fixed ? owners_.edge_owner[e] : mesh_.edge_faces(e)[0];
 }
 
-void Representatives::append_pairs(std::span<const FacePair> candidates, UninitializedVector<VertexFacePair>& vf,
-                                   UninitializedVector<EdgeEdgePair>& ee, bool simd) const {
+std::size_t Representatives::append_pairs(std::span<const FacePair> candidates, UninitializedVector<VertexFacePair>& vf,
+                                          UninitializedVector<EdgeEdgePair>& ee, bool simd, bool carry_orphans) const {
   if (rule_ != RepresentativeRule::fixed) {
     for (const FacePair& p : candidates)
       for_each_pair(
           p.a, p.b, [&](Index v, Index f) { vf.push_back({v, f}); }, [&](Index a, Index b) { ee.push_back({a, b}); });
-    return;
+    return 0;
   }
+  append_owned(candidates, vf, ee, simd);
+  if (!carry_orphans || carried_.empty()) return 0;
+  std::size_t carried = 0;
+  for (const FacePair& p : candidates) {  // their records are in L1: the gather just read them
+    if (records_[p.a].carried.holds(CarriedSignature::of(p.b))) carried += append_carried(p.a, p.b, vf, ee);
+    if (records_[p.b].carried.holds(CarriedSignature::of(p.a))) carried += append_carried(p.b, p.a, vf, ee);
+  }
+  return carried;
+}
+
+std::size_t Representatives::append_carried(Index carrier, Index other, UninitializedVector<VertexFacePair>& vf,
+                                            UninitializedVector<EdgeEdgePair>& ee) const {
+  std::size_t n = 0;
+  for (std::uint32_t k = carried_start_[std::size_t(carrier)], end = carried_start_[std::size_t(carrier) + 1]; k < end; ++k) {
+    const CarriedOrphan& o = carried_[k];
+    if (o.other != other) continue;
+    if (o.b < 0) vf.push_back({o.a, other});
+    else ee.push_back({o.a, o.b});
+    ++n;
+  }
+  return n;
+}
+
+void Representatives::build_carried_orphans() {
+  // Counting sort by carrier: carried_start_ holds each face's count, then its list's start.
+  std::vector<Index> carrier_of_vf(orphans_.vf.size(), -1), carrier_of_ee(orphans_.ee.size(), -1);
+  std::vector<Index> other_of_ee(orphans_.ee.size(), -1);
+  carried_start_.assign(std::size_t(mesh_.num_faces()) + 1, 0);
+  for (std::size_t i = 0; i < orphans_.vf.size(); ++i) {
+    const Index g = first_free_face(orphans_.vf[i].v, orphans_.vf[i].f);
+    if (g >= 0) ++carried_start_[std::size_t(g) + 1], carrier_of_vf[i] = g;
+    else uncarried_.vf.push_back(orphans_.vf[i]);
+  }
+  for (std::size_t i = 0; i < orphans_.ee.size(); ++i) {
+    const EdgeEdgePair& p = orphans_.ee[i];
+    for (Index g : mesh_.edge_faces(p.a)) {
+      for (Index h : mesh_.edge_faces(p.b))
+        if (!adjacent(g, h)) {
+          carrier_of_ee[i] = g, other_of_ee[i] = h;
+          break;
+        }
+      if (carrier_of_ee[i] >= 0) break;
+    }
+    if (carrier_of_ee[i] >= 0) ++carried_start_[std::size_t(carrier_of_ee[i]) + 1];
+    else uncarried_.ee.push_back(p);
+  }
+  for (std::size_t f = 0; f < std::size_t(mesh_.num_faces()); ++f) carried_start_[f + 1] += carried_start_[f];
+  carried_.resize(carried_start_.back());
+  std::vector<std::uint32_t> next(carried_start_.begin(), carried_start_.end() - 1);
+  const auto carry = [&](Index g, CarriedOrphan pair) {
+    carried_[next[std::size_t(g)]++] = pair;
+    records_[std::size_t(g)].carried.add(CarriedSignature::of(pair.other));
+  };
+  for (std::size_t i = 0; i < orphans_.vf.size(); ++i)
+    if (const Index g = carrier_of_vf[i]; g >= 0) carry(g, {orphans_.vf[i].f, orphans_.vf[i].v, -1});
+  for (std::size_t i = 0; i < orphans_.ee.size(); ++i)
+    if (const Index g = carrier_of_ee[i]; g >= 0) carry(g, {other_of_ee[i], orphans_.ee[i].a, orphans_.ee[i].b});
+}
+
+void Representatives::append_owned(std::span<const FacePair> candidates, UninitializedVector<VertexFacePair>& vf,
+                                   UninitializedVector<EdgeEdgePair>& ee, bool simd) const {
   // for_each_pair's fixed rule without its branches: every slot is written, the end advances by the owner bit
   // (the bits are close to random, and a mispredicted push_back per pair cost more than the pair; perf, n-body).
   const std::size_t vf_begin = vf.size(), ee_begin = ee.size();

@@ -13,6 +13,13 @@
 // (feature_bounds.hpp) has overlapping leaves for EVERY incident face pair, so its first non-adjacent one is a
 // candidate; normal-cone culling drops a candidate only inside one skipped patch, where no two non-adjacent
 // features can touch (traversal/normal_cones.hpp).
+//
+// `fixed` with carried orphans (the two combined, in the steps where it pays: NarrowPhase::begin_step): the
+// owned pairs as `fixed`, and each orphan through first_free's face pair instead of the orphan loop; only the
+// orphans with no non-adjacent face pair stay in the loop. Exactly once and none lost by the two arguments
+// above: an orphan's owner pair is never a candidate, and its first free pair is the only candidate that
+// carries it. Stage 0 (triangle_filter.hpp) drops a candidate only when no pair of its features can touch,
+// so it may drop the orphans a candidate carries with it.
 #include <algorithm>
 #include <span>
 #include <string_view>
@@ -27,15 +34,47 @@ namespace ccdlab {
 
 enum class RepresentativeRule { fixed, first_free };
 
-/// What the fixed rule's gather reads of a face, in one 32-byte line: its corners and edges (the mesh's order),
-/// its owner bits (Ownership::owned_mask) and its own id.
-struct alignas(32) GatherRecord {
+/// Face `other`'s three bits in a carrier's 128-bit signature (a Bloom filter, in its GatherRecord):
+/// a candidate reads a face's list only when all three are set. With ~10 others a face (n-body), a 64-bit
+/// signature with one bit let ~15% of the lookups through to a list that did not hold the face, and such a miss
+/// costs a walk of ~14 entries on lines of their own; this one lets ~1% through. A carrier's others lie two rings
+/// around it, at nearby ids, so the bits come from a multiplicative hash, not from the id's low bits.
+struct CarriedSignature {
+  std::uint64_t word[2] = {0, 0};
+  static constexpr CarriedSignature of(Index other) {
+    const std::uint32_t h = std::uint32_t(other) * 0x9E3779B1u;
+    CarriedSignature s;
+    for (const std::uint32_t bit : {h >> 25, (h >> 18) & 127u, (h >> 11) & 127u}) s.word[bit >> 6] |= 1ull << (bit & 63);
+    return s;
+  }
+  [[nodiscard]] constexpr bool holds(const CarriedSignature& o) const {
+    return ((word[0] & o.word[0]) == o.word[0]) & ((word[1] & o.word[1]) == o.word[1]);
+  }
+  constexpr void add(const CarriedSignature& o) { word[0] |= o.word[0], word[1] |= o.word[1]; }
+};
+
+/// What the fixed rule's gather reads of a face, in one 64-byte line: its corners and edges (the mesh's order),
+/// its owner bits (Ownership::owned_mask) and its own id (the 32 bytes the SIMD gather loads), then the
+/// signature of the faces it carries orphans with, read from the same line.
+struct alignas(64) GatherRecord {
   Index corner[3];
   Index edge[3];
   std::int32_t owned_mask;
   Index self;
+  CarriedSignature carried;
 };
-static_assert(sizeof(GatherRecord) == 32);
+static_assert(sizeof(GatherRecord) == 64);
+
+/// A pair of the fixed rule's orphan set, carried in the steps that allow it (NarrowPhase::begin_step) by a
+/// non-adjacent face pair of its features instead: the first one in first_free's order, (carrier, other), the
+/// carrier holding v or edge a. VF (v = a, f = other) when b < 0; else EE (a, b), a < b. Stored under the
+/// carrier; a candidate looks in both of its faces' lists for the other face (the pair beside the face: a hit
+/// reads no second line).
+struct CarriedOrphan {
+  Index other;
+  Index a;
+  Index b;
+};
 
 /// The EE pair of edges x and y, smaller id first, without a branch (g++ made std::min/max jumps here, taken at
 /// random: perf, rod-twist). Ids are non-negative int32, so y − x cannot overflow; d = min(0, y − x).
@@ -64,14 +103,21 @@ class Representatives {
   [[nodiscard]] RepresentativeRule rule() const { return rule_; }
   [[nodiscard]] const Ownership& owners() const { return owners_; }
   [[nodiscard]] const OrphanSet& orphans() const { return orphans_; }
+  /// fixed rule: the orphans no non-adjacent face pair of their features can carry (a few per vertex of high
+  /// valence); the rest can ride with the candidates (append_pairs' `carry_orphans`). Empty for first_free.
+  [[nodiscard]] const OrphanSet& uncarried_orphans() const { return uncarried_; }
+  /// Whether some orphan can be carried (fixed rule with a non-empty orphan set).
+  [[nodiscard]] bool carries_orphans() const { return !carried_.empty(); }
   /// A face incident to the vertex / edge, used to place an orphan in a normal-cone patch.
   [[nodiscard]] Index face_of_vertex(Index v) const;
   [[nodiscard]] Index face_of_edge(Index e) const;
 
   /// Appends the feature pairs that the non-adjacent candidates represent, candidate by candidate.
   /// `simd = false` runs the plain loop of the fixed rule even where the SIMD one could run (tests).
-  void append_pairs(std::span<const FacePair> candidates, UninitializedVector<VertexFacePair>& vf,
-                    UninitializedVector<EdgeEdgePair>& ee, bool simd = true) const;
+  /// `carry_orphans` (fixed rule): also the orphans each candidate carries (CarriedOrphan), after the owned
+  /// pairs; returns how many. The caller then tests uncarried_orphans() instead of orphans().
+  std::size_t append_pairs(std::span<const FacePair> candidates, UninitializedVector<VertexFacePair>& vf,
+                           UninitializedVector<EdgeEdgePair>& ee, bool simd = true, bool carry_orphans = false) const;
   /// The feature pairs that the non-adjacent candidate (fa, fb) represents (the reference append_pairs follows).
   template <class OnVf, class OnEe>
   void for_each_pair(Index fa, Index fb, OnVf&& on_vf, OnEe&& on_ee) const;
@@ -96,6 +142,14 @@ class Representatives {
     return false;
   }
   OrphanSet build_first_free_orphans(const std::vector<bool>& self) const;
+  /// The fixed rule's pairs of the candidates (SIMD where the CPU has it and `simd`).
+  void append_owned(std::span<const FacePair> candidates, UninitializedVector<VertexFacePair>& vf,
+                    UninitializedVector<EdgeEdgePair>& ee, bool simd) const;
+  /// fixed rule: sorts orphans_ into carried_ (by carrier face) and uncarried_.
+  void build_carried_orphans();
+  /// Appends the orphans that face `carrier` carries with face `other`; returns how many.
+  std::size_t append_carried(Index carrier, Index other, UninitializedVector<VertexFacePair>& vf,
+                             UninitializedVector<EdgeEdgePair>& ee) const;
   /// first_free, fast path: whether candidate face `fa` (v is its corner j) represents (v, fb). Most answers
   /// need no walk: fa comes first around v (rank 0), or the first face around v is already free of fb.
   [[nodiscard]] bool represents_vf(Index fa, int j, Index v, Index fb) const {
@@ -119,6 +173,11 @@ class Representatives {
   std::vector<std::uint8_t> corner_rank_;
   std::vector<std::uint8_t> edge_rank_;
   OrphanSet orphans_;
+  // fixed rule: the orphans, by the face that carries them (carried_start_[f] .. carried_start_[f + 1]), and the
+  // orphans no face pair carries (each face's signature of its others is in its GatherRecord).
+  std::vector<std::uint32_t> carried_start_;
+  std::vector<CarriedOrphan> carried_;
+  OrphanSet uncarried_;
 };
 
 template <class Pred>
@@ -137,7 +196,9 @@ Representatives::Representatives(const TriMesh& mesh, RepresentativeRule rule, P
       for (int j = 0; j < 3; ++j) r.corner[j] = mesh.face(f)[j], r.edge[j] = mesh.face_edges(f)[j];
       r.owned_mask = owners_.owned_mask[std::size_t(f)];
       r.self = f;
+      r.carried = CarriedSignature{};  // build_carried_orphans adds the faces
     }
+    build_carried_orphans();
   } else {
     corner_rank_.assign(3 * std::size_t(mesh.num_faces()), 255);
     edge_rank_.assign(3 * std::size_t(mesh.num_faces()), 255);

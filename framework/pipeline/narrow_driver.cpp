@@ -99,7 +99,7 @@ void NarrowDriver::test_orphans(const std::vector<Index>* face_patch, StepResult
   StepCounters& c = result.counters;
   const std::uint64_t vf_before = c.vf_pairs, ee_before = c.ee_pairs, tests_before = c.vf_tests + c.ee_tests;
   const Representatives& reps = narrow_.representatives();
-  const OrphanSet& orphans = reps.orphans();
+  const OrphanSet& orphans = narrow_.orphans_to_test();
   auto same_skipped_patch = [face_patch](Index f, Index g) {
     return (*face_patch)[f] >= 0 && (*face_patch)[f] == (*face_patch)[g];
   };

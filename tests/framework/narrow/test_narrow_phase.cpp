@@ -640,17 +640,56 @@ TEST(NarrowModes, EveryModeRuleTargetAndKReportsTheSameContactsAsBruteForce) {
     const std::uint64_t expect = contact_set_hash(reference);
     for (auto mode : {NarrowMode::scalar, NarrowMode::batched})
       for (auto rule : {RepresentativeRule::fixed, RepresentativeRule::first_free})
-        for (int k : {6, 14, 18, 26}) {
-          CcdPipeline pipeline(mesh, single_cloth_body(mesh), strategies(tester, {mode, rule}, k, 1 + k % 3));
-          const StepResult r = pipeline.step(x0, x1);
-          EXPECT_EQ(contact_set_hash(r.contacts), expect)
-              << tester << " " << to_string(mode) << "/" << to_string(rule) << " K=" << k;
-        }
+        for (auto carry : {OrphanCarry::never, OrphanCarry::always})
+          for (int k : {6, 14, 18, 26}) {
+            if (carry == OrphanCarry::always && rule == RepresentativeRule::first_free) continue;  // nothing to carry
+            CcdPipeline pipeline(mesh, single_cloth_body(mesh), strategies(tester, {mode, rule, carry}, k, 1 + k % 3));
+            const StepResult r = pipeline.step(x0, x1);
+            EXPECT_EQ(contact_set_hash(r.contacts), expect)
+                << tester << " " << to_string(mode) << "/" << to_string(rule) << " K=" << k << " carry " << int(carry);
+            if (carry == OrphanCarry::always) {
+              EXPECT_GT(r.counters.orphans_carried, 0u) << tester << " K=" << k;
+            }
+          }
     for_each_simd_target([&](const char* target) {
       CcdPipeline pipeline(mesh, single_cloth_body(mesh), strategies(tester, {}, 18, 2));
       EXPECT_EQ(contact_set_hash(pipeline.step(x0, x1).contacts), expect) << tester << " on " << target;
     });
   }
+}
+
+TEST(NarrowModes, TheCandidatesCarryTheOrphansInTheStepsWhereFewCandidatesAreGathered) {
+  // A cloth that barely moves: stage 0 leaves a few candidates, far fewer than the ~30 orphans a face, so from
+  // the second step on the candidates carry the orphans, with the contacts of a pipeline that never lets them.
+  MeshData g = test::grid(24, 24);
+  TriMesh mesh(Index(g.positions.size()), g.faces);
+  std::mt19937 rng(4);
+  std::vector<Positions> frames{test::crumple(g.positions, rng, 0.004)};
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int s = 0; s < 3; ++s) {
+    frames.push_back(frames.back());
+    for (Vec3& p : frames.back()) p += 0.004 * Vec3(u(rng), u(rng), u(rng));
+  }
+  frames[2][300] = frames[1][300] + Vec3(0, 0, 0.3);  // a vertex jumps through its neighbours: contacts among orphans
+  CcdPipeline carrying(mesh, single_cloth_body(mesh), strategies("float", {}, 18, 2));
+  CcdPipeline never(mesh, single_cloth_body(mesh), strategies("float", {NarrowMode::batched, RepresentativeRule::fixed, OrphanCarry::never}, 18, 2));
+  const std::size_t orphans = carrying.orphans().vf.size() + carrying.orphans().ee.size();
+  bool any_contact = false;
+  for (std::size_t s = 0; s + 1 < frames.size(); ++s) {
+    const StepResult a = carrying.step(frames[s], frames[s + 1]), b = never.step(frames[s], frames[s + 1]);
+    EXPECT_EQ(contact_set_hash(a.contacts), contact_set_hash(b.contacts)) << "step " << s;
+    EXPECT_EQ(b.counters.orphans_carried, 0u);
+    EXPECT_EQ(b.counters.orphan_vf + b.counters.orphan_ee, orphans);
+    if (s == 0) {  // no step measured yet
+      EXPECT_EQ(a.counters.orphans_carried, 0u);
+      EXPECT_LT(double(a.counters.candidates_gathered), 0.3 * double(orphans));
+    } else {
+      EXPECT_GT(a.counters.orphans_carried, 0u) << "step " << s;
+      EXPECT_LT(a.counters.orphan_vf + a.counters.orphan_ee, orphans / 10) << "step " << s;
+    }
+    any_contact |= !a.contacts.empty();
+  }
+  EXPECT_TRUE(any_contact);
 }
 
 }  // namespace

@@ -13,9 +13,10 @@
 namespace ccdlab {
 namespace {
 
-PipelineStrategies default_strategies(int k) {
+PipelineStrategies default_strategies(int k, NarrowOptions narrow = {}) {
   PipelineStrategies s;
   s.k = k;
+  s.narrow = narrow;
   s.builder = builder_registry().make({"median", {}});
   s.scheduler = scheduler_registry().make({"sequential", {}});
   s.tester = tester_registry().make({"float", tester_registry().find("float")->defaults()});
@@ -51,6 +52,32 @@ Gathered gather_one_step(CcdPipeline& pipeline, const MeshData& g, unsigned seed
   if (x0_out) *x0_out = std::move(x0);
   if (x1_out) *x1_out = std::move(x1);
   return out;
+}
+
+/// first_free's face pair of (v, f): the first face around v not adjacent to f, or -1.
+Index first_free_vf(const TriMesh& mesh, Index v, Index f) {
+  for (Index h : mesh.vertex_faces(v))
+    if (!mesh.faces_adjacent(h, f)) return h;
+  return -1;
+}
+/// first_free's face pair of (a, b): the first non-adjacent one of edge_faces(a) × edge_faces(b), or {-1, -1}.
+std::pair<Index, Index> first_free_ee(const TriMesh& mesh, Index a, Index b) {
+  for (Index fa : mesh.edge_faces(a))
+    for (Index fb : mesh.edge_faces(b))
+      if (!mesh.faces_adjacent(fa, fb)) return {fa, fb};
+  return {-1, -1};
+}
+
+/// Every pair brute force finds colliding is among the gathered ones.
+void expect_every_contact_gathered(const CcdPipeline& pipeline, const Gathered& gathered, const Positions& x0, const Positions& x1) {
+  auto truth = brute_force_contacts(pipeline.mesh(), pipeline.rules(), x0, x1, *pipeline.strategies().tester);
+  ASSERT_GT(truth.size(), 5u);
+  for (const Contact& c : truth) {
+    if (c.kind == ContactKind::vf)
+      EXPECT_TRUE(std::binary_search(gathered.vf.begin(), gathered.vf.end(), VertexFacePair{c.feature_a, c.feature_b}));
+    else
+      EXPECT_TRUE(std::binary_search(gathered.ee.begin(), gathered.ee.end(), EdgeEdgePair{c.feature_a, c.feature_b}));
+  }
 }
 
 TEST(Ownership, EveryFeatureHasOneIncidentOwner) {
@@ -108,24 +135,14 @@ TEST(Ownership, FeaturePairsAreTestedExactlyOnceAndNoneIsLost) {
     EXPECT_EQ(vf.size(), expected_vf);
     EXPECT_EQ(ee.size(), expected_ee);
 
-    // And every colliding pair of brute force is among them.
-    auto truth = brute_force_contacts(mesh, pipeline.rules(), x0, x1, *pipeline.strategies().tester);
-    ASSERT_GT(truth.size(), 5u);
-    for (const Contact& c : truth) {
-      if (c.kind == ContactKind::vf)
-        EXPECT_TRUE(std::binary_search(vf.begin(), vf.end(), VertexFacePair{c.feature_a, c.feature_b}));
-      else
-        EXPECT_TRUE(std::binary_search(ee.begin(), ee.end(), EdgeEdgePair{c.feature_a, c.feature_b}));
-    }
+    expect_every_contact_gathered(pipeline, gathered, x0, x1);
   }
 }
 
 TEST(Representatives, FirstFreeTestsEveryFeaturePairOnceThroughItsFirstNonAdjacentFacePair) {
   MeshData g = test::grid(8, 8);
   TriMesh mesh(Index(g.positions.size()), g.faces);
-  PipelineStrategies s = default_strategies(18);
-  s.narrow.representative = RepresentativeRule::first_free;
-  CcdPipeline pipeline(mesh, single_cloth_body(mesh), std::move(s));
+  CcdPipeline pipeline(mesh, single_cloth_body(mesh), default_strategies(18, {NarrowMode::batched, RepresentativeRule::first_free}));
   const Gathered gathered = gather_one_step(pipeline, g, 17);
   const auto& vf = gathered.vf;
   const auto& ee = gathered.ee;
@@ -134,9 +151,7 @@ TEST(Representatives, FirstFreeTestsEveryFeaturePairOnceThroughItsFirstNonAdjace
   for (Index v = 0; v < mesh.num_vertices(); ++v)
     for (Index f = 0; f < mesh.num_faces(); ++f) {
       if (contains_vertex(mesh.face(f), v)) continue;
-      Index rep = -1;
-      for (Index h : mesh.vertex_faces(v))
-        if (!mesh.faces_adjacent(h, f)) { rep = h; break; }
+      const Index rep = first_free_vf(mesh, v, f);
       orphans_vf += rep < 0;
       const bool expect = rep < 0 || is_candidate(rep, f);
       ASSERT_EQ(std::binary_search(vf.begin(), vf.end(), VertexFacePair{v, f}), expect) << "v " << v << " f " << f;
@@ -144,12 +159,7 @@ TEST(Representatives, FirstFreeTestsEveryFeaturePairOnceThroughItsFirstNonAdjace
   for (Index a = 0; a < mesh.num_edges(); ++a)
     for (Index b = a + 1; b < mesh.num_edges(); ++b) {
       if (shares_vertex(mesh.edge(a), mesh.edge(b))) continue;
-      std::pair<Index, Index> rep{-1, -1};
-      for (Index fa : mesh.edge_faces(a)) {
-        for (Index fb : mesh.edge_faces(b))
-          if (!mesh.faces_adjacent(fa, fb)) { rep = {fa, fb}; break; }
-        if (rep.first >= 0) break;
-      }
+      const auto rep = first_free_ee(mesh, a, b);
       orphans_ee += rep.first < 0;
       const bool expect = rep.first < 0 || is_candidate(rep.first, rep.second);
       ASSERT_EQ(std::binary_search(ee.begin(), ee.end(), EdgeEdgePair{a, b}), expect) << "a " << a << " b " << b;
@@ -159,6 +169,49 @@ TEST(Representatives, FirstFreeTestsEveryFeaturePairOnceThroughItsFirstNonAdjace
   // Far fewer orphans than the fixed rule's (a grid: only around the corners and borders).
   const OrphanSet fixed = build_orphan_set(mesh, assign_owners(mesh), [](Index) { return true; });
   EXPECT_LT(orphans_vf + orphans_ee, (fixed.vf.size() + fixed.ee.size()) / 4);
+}
+
+TEST(Representatives, CarriedOrphansAreTestedOnceThroughTheirFirstNonAdjacentFacePair) {
+  // The fixed rule with the candidates carrying the orphans: a pair of non-adjacent owners is tested through
+  // its owners' candidate, an orphan through the first non-adjacent face pair of its features (first_free's
+  // choice), and only an orphan with none through the orphan loop.
+  MeshData g = test::grid(8, 8);
+  TriMesh mesh(Index(g.positions.size()), g.faces);
+  CcdPipeline pipeline(mesh, single_cloth_body(mesh),
+                       default_strategies(18, {NarrowMode::batched, RepresentativeRule::fixed, OrphanCarry::always}));
+  Positions x0, x1;
+  const Gathered gathered = gather_one_step(pipeline, g, 23, &x0, &x1);
+  const Ownership& own = pipeline.representatives().owners();
+  const auto was_gathered = [&](const auto& pairs, const auto& pair) { return std::binary_search(pairs.begin(), pairs.end(), pair); };
+  std::size_t carried = 0, uncarried = 0;
+  for (Index v = 0; v < mesh.num_vertices(); ++v)
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+      if (contains_vertex(mesh.face(f), v)) continue;
+      bool expect = gathered.is_candidate(own.vertex_owner[v], f);
+      if (mesh.faces_adjacent(own.vertex_owner[v], f)) {
+        const Index rep = first_free_vf(mesh, v, f);
+        expect = rep < 0 || gathered.is_candidate(rep, f);
+        (rep < 0 ? uncarried : carried) += 1;
+      }
+      ASSERT_EQ(was_gathered(gathered.vf, VertexFacePair{v, f}), expect) << "v " << v << " f " << f;
+    }
+  for (Index a = 0; a < mesh.num_edges(); ++a)
+    for (Index b = a + 1; b < mesh.num_edges(); ++b) {
+      if (shares_vertex(mesh.edge(a), mesh.edge(b))) continue;
+      const Index oa = own.edge_owner[a], ob = own.edge_owner[b];
+      bool expect = gathered.is_candidate(oa, ob);
+      if (mesh.faces_adjacent(oa, ob)) {
+        const auto rep = first_free_ee(mesh, a, b);
+        expect = rep.first < 0 || gathered.is_candidate(rep.first, rep.second);
+        (rep.first < 0 ? uncarried : carried) += 1;
+      }
+      ASSERT_EQ(was_gathered(gathered.ee, EdgeEdgePair{a, b}), expect) << "a " << a << " b " << b;
+    }
+  const Representatives& reps = pipeline.representatives();
+  EXPECT_EQ(reps.orphans().vf.size() + reps.orphans().ee.size(), carried + uncarried);
+  EXPECT_EQ(reps.uncarried_orphans().vf.size() + reps.uncarried_orphans().ee.size(), uncarried);
+  EXPECT_GT(carried, 4 * uncarried);  // the uncarried lie at the borders and corners
+  expect_every_contact_gathered(pipeline, gathered, x0, x1);
 }
 
 TEST(OrphanSet, CoversExactlyThePairsOfAdjacentOwners) {
