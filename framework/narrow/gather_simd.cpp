@@ -75,7 +75,7 @@ HWY_INLINE V OrderPairs(V x) {
 bool GatherOwned(const GatherRecord* rec, const FacePair* candidates, std::size_t n, VertexFacePair* out_vf,
                  EdgeEdgePair* out_ee, std::size_t* n_vf, std::size_t* n_ee) {
 #if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL || HWY_TARGET == HWY_AVX2
-  static_assert(sizeof(GatherRecord) == 64 && sizeof(VertexFacePair) == 8 && sizeof(EdgeEdgePair) == 8);
+  static_assert(sizeof(GatherRecord) == 32 && sizeof(VertexFacePair) == 8 && sizeof(EdgeEdgePair) == 8);
   const hn::Full256<std::int32_t> d8;
 #if HWY_TARGET == HWY_AVX2
   // Each 256-bit output vector holds four pairs, each lane taken from a's record (table entry < 8) or b's (≥ 8):

@@ -32,9 +32,11 @@ std::size_t Representatives::append_pairs(std::span<const FacePair> candidates, 
   append_owned(candidates, vf, ee, simd);
   if (!carry_orphans || carried_.empty()) return 0;
   std::size_t carried = 0;
-  for (const FacePair& p : candidates) {  // their records are in L1: the gather just read them
-    if (records_[p.a].carried.holds(CarriedSignature::of(p.b))) carried += append_carried(p.a, p.b, vf, ee);
-    if (records_[p.b].carried.holds(CarriedSignature::of(p.a))) carried += append_carried(p.b, p.a, vf, ee);
+  const std::uint64_t* bits = carried_bits_.data();
+  for (const FacePair& p : candidates) {
+    const std::uint64_t want_a = carried_bits(p.b), want_b = carried_bits(p.a);
+    if ((bits[p.a] & want_a) == want_a) carried += append_carried(p.a, p.b, vf, ee);
+    if ((bits[p.b] & want_b) == want_b) carried += append_carried(p.b, p.a, vf, ee);
   }
   return carried;
 }
@@ -77,10 +79,11 @@ void Representatives::build_carried_orphans() {
   }
   for (std::size_t f = 0; f < std::size_t(mesh_.num_faces()); ++f) carried_start_[f + 1] += carried_start_[f];
   carried_.resize(carried_start_.back());
+  carried_bits_.assign(std::size_t(mesh_.num_faces()), 0);
   std::vector<std::uint32_t> next(carried_start_.begin(), carried_start_.end() - 1);
   const auto carry = [&](Index g, CarriedOrphan pair) {
     carried_[next[std::size_t(g)]++] = pair;
-    records_[std::size_t(g)].carried.add(CarriedSignature::of(pair.other));
+    carried_bits_[std::size_t(g)] |= carried_bits(pair.other);
   };
   for (std::size_t i = 0; i < orphans_.vf.size(); ++i)
     if (const Index g = carrier_of_vf[i]; g >= 0) carry(g, {orphans_.vf[i].f, orphans_.vf[i].v, -1});

@@ -34,36 +34,24 @@ namespace ccdlab {
 
 enum class RepresentativeRule { fixed, first_free };
 
-/// Face `other`'s three bits in a carrier's 128-bit signature (a Bloom filter, in its GatherRecord):
-/// a candidate reads a face's list only when all three are set. With ~10 others a face (n-body), a 64-bit
-/// signature with one bit let ~15% of the lookups through to a list that did not hold the face, and such a miss
-/// costs a walk of ~14 entries on lines of their own; this one lets ~1% through. A carrier's others lie two rings
-/// around it, at nearby ids, so the bits come from a multiplicative hash, not from the id's low bits.
-struct CarriedSignature {
-  std::uint64_t word[2] = {0, 0};
-  static constexpr CarriedSignature of(Index other) {
-    const std::uint32_t h = std::uint32_t(other) * 0x9E3779B1u;
-    CarriedSignature s;
-    for (const std::uint32_t bit : {h >> 25, (h >> 18) & 127u, (h >> 11) & 127u}) s.word[bit >> 6] |= 1ull << (bit & 63);
-    return s;
-  }
-  [[nodiscard]] constexpr bool holds(const CarriedSignature& o) const {
-    return ((word[0] & o.word[0]) == o.word[0]) & ((word[1] & o.word[1]) == o.word[1]);
-  }
-  constexpr void add(const CarriedSignature& o) { word[0] |= o.word[0], word[1] |= o.word[1]; }
-};
+/// Face `other`'s two bits in a carrier's 64-bit signature (a Bloom filter: Representatives::carried_bits_):
+/// a candidate reads a face's list of carried orphans only when both are set. With ~10 others a face (n-body),
+/// one bit let ~15% of the lookups through to a list that did not hold the face, two let ~6%. A carrier's others
+/// lie two rings around it, at nearby ids, so the bits come from a multiplicative hash, not from the id's low bits.
+constexpr std::uint64_t carried_bits(Index other) {
+  const std::uint32_t h = std::uint32_t(other) * 0x9E3779B1u;
+  return (1ull << (h >> 26)) | (1ull << ((h >> 20) & 63u));
+}
 
-/// What the fixed rule's gather reads of a face, in one 64-byte line: its corners and edges (the mesh's order),
-/// its owner bits (Ownership::owned_mask) and its own id (the 32 bytes the SIMD gather loads), then the
-/// signature of the faces it carries orphans with, read from the same line.
-struct alignas(64) GatherRecord {
+/// What the fixed rule's gather reads of a face, in one 32-byte line: its corners and edges (the mesh's order),
+/// its owner bits (Ownership::owned_mask) and its own id.
+struct alignas(32) GatherRecord {
   Index corner[3];
   Index edge[3];
   std::int32_t owned_mask;
   Index self;
-  CarriedSignature carried;
 };
-static_assert(sizeof(GatherRecord) == 64);
+static_assert(sizeof(GatherRecord) == 32);
 
 /// A pair of the fixed rule's orphan set, carried in the steps that allow it (NarrowPhase::begin_step) by a
 /// non-adjacent face pair of its features instead: the first one in first_free's order, (carrier, other), the
@@ -173,10 +161,11 @@ class Representatives {
   std::vector<std::uint8_t> corner_rank_;
   std::vector<std::uint8_t> edge_rank_;
   OrphanSet orphans_;
-  // fixed rule: the orphans, by the face that carries them (carried_start_[f] .. carried_start_[f + 1]), and the
-  // orphans no face pair carries (each face's signature of its others is in its GatherRecord).
+  // fixed rule: the orphans, by the face that carries them (carried_start_[f] .. carried_start_[f + 1]), each
+  // face's signature of the faces it carries them with, and the orphans no face pair carries.
   std::vector<std::uint32_t> carried_start_;
   std::vector<CarriedOrphan> carried_;
+  std::vector<std::uint64_t> carried_bits_;
   OrphanSet uncarried_;
 };
 
@@ -196,7 +185,6 @@ Representatives::Representatives(const TriMesh& mesh, RepresentativeRule rule, P
       for (int j = 0; j < 3; ++j) r.corner[j] = mesh.face(f)[j], r.edge[j] = mesh.face_edges(f)[j];
       r.owned_mask = owners_.owned_mask[std::size_t(f)];
       r.self = f;
-      r.carried = CarriedSignature{};  // build_carried_orphans adds the faces
     }
     build_carried_orphans();
   } else {

@@ -34,8 +34,10 @@ std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std
   const std::uint64_t feature_boxes = v * FeatureBounds::kBytesPerVertex;
   const std::uint64_t records = std::max<std::uint64_t>(f * sizeof(GatherRecord), kLargeAllocation);  // one huge page at least
   const std::uint64_t ownership = (v + e) * sizeof(Index) + f + records;  // owners, masks, the gather's records
-  // The orphan set, and the same pairs again by the face that carries them (representatives.hpp), with a list start per face.
-  const std::uint64_t orphans = std::uint64_t(orphan_pairs) * (sizeof(EdgeEdgePair) + sizeof(CarriedOrphan)) + (f + 1) * sizeof(std::uint32_t);
+  // The orphan set, and the same pairs again by the face that carries them (representatives.hpp), with a list
+  // start and a signature per face.
+  const std::uint64_t orphans = std::uint64_t(orphan_pairs) * (sizeof(EdgeEdgePair) + sizeof(CarriedOrphan)) +
+                                f * (sizeof(std::uint32_t) + sizeof(std::uint64_t));
   // The frames, and stage 0's float copy with its faces' boxes (framework/narrow/frame_points.hpp).
   const std::uint64_t frames = 2 * v * sizeof(Vec3) + v * sizeof(FloatFramePoints) + f * sizeof(FloatFaceBoxes);
   return bvh + wide + feature_boxes + ownership + orphans + frames;
