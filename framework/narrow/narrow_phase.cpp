@@ -24,13 +24,14 @@ using Clock = std::chrono::steady_clock;
 /// keeps every work counter independent of how the candidates are cut into chunks (schedulers, threads, slices).
 constexpr double kTriangleCullPays = 0.7;
 constexpr std::uint64_t kTriangleRemeasure = 8;
-/// The candidates carry the orphans (Representatives::append_pairs) in a step when the last step gathered at
-/// most this many candidates per orphan. A gathered candidate then checks two signatures and now and then reads
-/// a list, and brings the orphans it carries into the batch (rod-twist: 731K candidates carry 174K orphans); an
-/// orphan left in the set costs its stage 1 and, when that keeps it, stages 2–4 (docs/narrow-phase.md, "The
-/// candidates carry the orphans": rod-twist, 0.76 candidates an orphan, lost; n-body, 0.19, gained). A rule per
-/// step from whole-step counts, as stage 0's.
-constexpr double kCarryPays = 0.3;
+/// The candidates carry the orphans (Representatives::append_pairs) in a step expected to gather at most this
+/// many candidates per orphan: the last step's candidates, less the share stage 0 culled when it last ran if it
+/// runs in this one. A gathered candidate then checks two signatures, now and then reads a list, and brings the
+/// orphans it carries into the batch (rod-twist: 731K candidates carry 174K orphans); an orphan left in the set
+/// costs its stage 1 and, when that keeps it, stages 2–4 (docs/narrow-phase.md, "The candidates carry the
+/// orphans": rod-twist, 0.76 candidates an orphan, lost; n-body, 0.19, gained). A rule per step from whole-step
+/// counts, as stage 0's.
+constexpr double kCarryPays = 0.25;
 std::uint64_t ns_since(Clock::time_point t) {
   return std::uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t).count());
 }
@@ -101,7 +102,8 @@ void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const
     case OrphanCarry::never: carry_orphans_ = false; break;
     case OrphanCarry::when_it_pays:
       carry_orphans_ = options_.mode == NarrowMode::batched && reps_.carries_orphans() && steps_ > 0 &&
-                       double(gathered_candidates_) <= kCarryPays * double(orphans.vf.size() + orphans.ee.size());
+                       double(last_candidates_) * (triangle_stage_ ? 1 - triangle_cull_rate_ : 1) <=
+                           kCarryPays * double(orphans.vf.size() + orphans.ee.size());
   }
 }
 
@@ -110,7 +112,7 @@ void NarrowPhase::end_step(const NarrowCounters& step) {
     triangle_cull_rate_ = double(step.triangle_culled) / double(step.triangle_tested);
     triangle_candidates_ = step.triangle_tested;
   }
-  gathered_candidates_ = step.candidates_gathered;
+  last_candidates_ = step.candidates_gathered + step.triangle_culled;
   ++steps_;
 }
 

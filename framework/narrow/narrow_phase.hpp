@@ -110,7 +110,7 @@ class NarrowPhase {
   double triangle_cull_rate_ = 0;     ///< its cull rate in the last step that ran it
   std::uint64_t triangle_candidates_ = 0;  ///< the candidates of that step
   bool carry_orphans_ = false;        ///< the candidates carry the orphans in this step (begin_step)
-  std::uint64_t gathered_candidates_ = 0;  ///< the candidates the last step gathered
+  std::uint64_t last_candidates_ = 0;  ///< the candidates of the last step
   std::uint64_t steps_ = 0;
 };
 

@@ -682,7 +682,7 @@ TEST(NarrowModes, TheCandidatesCarryTheOrphansInTheStepsWhereFewCandidatesAreGat
     EXPECT_EQ(b.counters.orphan_vf + b.counters.orphan_ee, orphans);
     if (s == 0) {  // no step measured yet
       EXPECT_EQ(a.counters.orphans_carried, 0u);
-      EXPECT_LT(double(a.counters.candidates_gathered), 0.3 * double(orphans));
+      EXPECT_LT(double(a.counters.candidate_pairs), 0.25 * double(orphans));
     } else {
       EXPECT_GT(a.counters.orphans_carried, 0u) << "step " << s;
       EXPECT_LT(a.counters.orphan_vf + a.counters.orphan_ee, orphans / 10) << "step " << s;
