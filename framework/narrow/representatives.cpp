@@ -1,6 +1,7 @@
 #include "framework/narrow/representatives.hpp"
 
 #include <algorithm>
+#include <tuple>
 
 #include "framework/util/error.hpp"
 
@@ -66,14 +67,7 @@ void Representatives::build_carried_orphans() {
   }
   for (std::size_t i = 0; i < orphans_.ee.size(); ++i) {
     const EdgeEdgePair& p = orphans_.ee[i];
-    for (Index g : mesh_.edge_faces(p.a)) {
-      for (Index h : mesh_.edge_faces(p.b))
-        if (!adjacent(g, h)) {
-          carrier_of_ee[i] = g, other_of_ee[i] = h;
-          break;
-        }
-      if (carrier_of_ee[i] >= 0) break;
-    }
+    std::tie(carrier_of_ee[i], other_of_ee[i]) = first_free_faces(p.a, p.b);
     if (carrier_of_ee[i] >= 0) ++carried_start_[std::size_t(carrier_of_ee[i]) + 1];
     else uncarried_.ee.push_back(p);
   }
