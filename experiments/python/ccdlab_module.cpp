@@ -124,8 +124,10 @@ PipelineStrategies strategies_from(const py::kwargs& options, const char* call) 
       s.narrow.representative = parse_representative_rule(value.cast<std::string>());
     } else if (key == "normal_cones") {
       s.normal_cones = value.cast<bool>();
+    } else if (key == "end_boxes") {
+      s.end_boxes = value.cast<bool>();
     } else {
-      fail("{}: unknown option '{}' (k, width, hierarchy, scheduler, threads, tester, narrow, representative, "
+      fail("{}: unknown option '{}' (k, width, end_boxes, hierarchy, scheduler, threads, tester, narrow, representative, "
            "normal_cones)", call, key);
     }
   }

@@ -209,7 +209,7 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
 
 void read_strategy_section(const YamlReader& r, const YAML::Node& root, const Registries& reg, ExperimentConfig& c) {
   if (root["bv"]) {
-    r.check_keys(root["bv"], "bv", {"k", "width"});
+    r.check_keys(root["bv"], "bv", {"k", "width", "end_boxes"});
     if (root["bv"]["k"]) {
       c.k = int(r.integer(root["bv"]["k"], "bv.k", 6, 26));
       if (!is_kdop_k(c.k)) r.error(root["bv"]["k"], "bv.k", fmt::format("one of {}", kKdopKs));
@@ -218,6 +218,7 @@ void read_strategy_section(const YamlReader& r, const YAML::Node& root, const Re
       c.width = int(r.integer(root["bv"]["width"], "bv.width", 2, 4));
       if (!is_bvh_width(c.width)) r.error(root["bv"]["width"], "bv.width", kBvhWidths);
     }
+    if (root["bv"]["end_boxes"]) c.end_boxes = r.boolean(root["bv"]["end_boxes"], "bv.end_boxes");
   }
   auto strategy = [&](const char* key, const auto& registry, const std::string& default_name) {
     return root[key] ? r.strategy(root[key], key, registry, default_name)
@@ -277,7 +278,7 @@ nlohmann::json to_json(const ExperimentConfig& c) {
       j["scene"] = {{"bodies", bodies}};
     }
   }
-  j["bv"] = {{"k", c.k}, {"width", c.width}};
+  j["bv"] = {{"k", c.k}, {"width", c.width}, {"end_boxes", c.end_boxes}};
   j["hierarchy"] = params_json(c.hierarchy);
   j["restructure"] = {{"threshold", c.restructure_threshold}};
   j["normal_cones"] = c.normal_cones;
@@ -319,6 +320,7 @@ PipelineStrategies make_strategies(const ExperimentConfig& c, const Registries& 
   PipelineStrategies s;
   s.k = c.k;
   s.width = c.width;
+  s.end_boxes = c.end_boxes;
   s.threads = c.threads;
   s.split_threads = c.split_threads;
   s.restructure_threshold = c.restructure_threshold;

@@ -12,11 +12,13 @@
 // Layout: WideLayout (from the topology, cut once per topology version like the refit plan) gives each inner
 // node a slot and its lanes' node ids; WideBvs<BV> (refit every step from the binary volumes) gives each slot
 // its lanes' bounds, min and max per axis × 4 lanes. Empty lanes hold an empty k-DOP, which overlaps nothing.
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <vector>
 
 #include "framework/hierarchy/bvh.hpp"
+#include "framework/hierarchy/end_boxes.hpp"
 #include "framework/util/uninitialized_vector.hpp"
 
 #if defined(__SSE2__)
@@ -97,7 +99,39 @@ struct WideLane {
 };
 
 template <class BV>
-using WideBvs = UnconstructedVector<WideBounds<BV>>;  // large: in huge pages, not value-initialized
+using WideBvs = UnconstructedVector<WideBounds<BV>>;
+
+/// A wide record's lanes' EndBoxes (end_boxes.hpp), lo[frame][axis][lane]: x, y, z only. Empty lanes hold the
+/// empty boxes (apart from everything; the k-DOP test drops them anyway).
+struct alignas(64) WideEnds {
+  float lo[2][3][WideLayout::kWidth], hi[2][3][WideLayout::kWidth];
+};
+using WideEndsArray = UnconstructedVector<WideEnds>;
+
+/// Copies the EndBoxes of wide node w's lanes into its WideEnds (empty lanes: lo = +inf, hi = −inf).
+inline void refit_wide_ends(const WideLayout& layout, const UnconstructedVector<EndBoxes>& ends, Index w, WideEnds& out) {
+  static const EndBoxes empty = EndBoxes::empty();
+  const EndBoxes* lane[WideLayout::kWidth];
+  for (int j = 0; j < WideLayout::kWidth; ++j) {
+    const Index c = layout.lanes[w].node[j];
+    lane[j] = c >= 0 ? &ends[c] : &empty;
+  }
+  for (int f = 0; f < 2; ++f) {
+#if defined(__SSE2__)
+    const auto transpose = [&](auto bound, float (*dst)[WideLayout::kWidth]) {
+      __m128 r0 = _mm_load_ps(bound(*lane[0])), r1 = _mm_load_ps(bound(*lane[1])), r2 = _mm_load_ps(bound(*lane[2])),
+             r3 = _mm_load_ps(bound(*lane[3]));
+      _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+      _mm_store_ps(dst[0], r0), _mm_store_ps(dst[1], r1), _mm_store_ps(dst[2], r2);
+    };
+    transpose([f](const EndBoxes& e) { return e.lo[f]; }, out.lo[f]);
+    transpose([f](const EndBoxes& e) { return e.hi[f]; }, out.hi[f]);
+#else
+    for (int c = 0; c < 3; ++c)
+      for (int j = 0; j < WideLayout::kWidth; ++j) out.lo[f][c][j] = lane[j]->lo[f][c], out.hi[f][c][j] = lane[j]->hi[f][c];
+#endif
+  }
+}  // large: in huge pages, not value-initialized
 
 /// Copies the binary volumes of wide node w's lanes into its bounds, once they are refit. (Its LaneIds change
 /// only with the topology: the refit copies them when it cuts the layout.) Empty lanes take the empty k-DOP.

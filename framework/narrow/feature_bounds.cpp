@@ -25,6 +25,11 @@ void FeatureBounds::update(const Positions& x_t0, const Positions& x_t1, double 
   });
   AxisRange all;
   for (const AxisRange& r : chunk_range) all.include(r.lo, r.hi);
+  // x, y, z are the 26-DOP's first three axes: their ranges hold every vertex of both frames. (NaN or Inf make it
+  // non-finite, and whoever reads it then culls nothing by it.)
+  extent_ = 0;
+  for (int i = 0; i < 3; ++i) extent_ += n ? double(all.hi[i]) - double(all.lo[i]) : 0.0;
+  if (n && !std::isfinite(extent_)) extent_ = std::numeric_limits<double>::infinity();
   update_coarse(all, threads, trace);
 }
 

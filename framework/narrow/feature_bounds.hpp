@@ -110,6 +110,9 @@ class FeatureBounds {
 
   /// Vertex v at both ends of the step, v < the frames' size (update).
   [[nodiscard]] const FramePoints* frame_points() const { return points_.data(); }
+  /// At least the 1-norm extent of the box of every vertex in both frames (Σ over x, y, z of its side): what bounds
+  /// the size of any pair of features, for reaches relative to it (CullReach::rel).
+  [[nodiscard]] double scene_extent() const { return extent_; }
 
   /// The swept K-DOP of a face: the union of its three vertices' 26-DOPs, on K's axes. The hierarchy's leaves
   /// are these (point 2 above); 3 × 32 floats min/max and K selections, against 6 points × K/2 projections.
@@ -206,6 +209,7 @@ class FeatureBounds {
   UninitializedVector<PaddedDop> vertex_;  // update() writes every entry: growing it zeroes nothing
   UninitializedVector<CoarseDop> coarse_;
   UninitializedVector<FramePoints> points_;
+  double extent_ = 0;
 };
 
 }  // namespace ccdlab

@@ -69,7 +69,7 @@ void BodyHierarchy::build(const Positions& x_t0, const Positions& x_t1, const Hi
   trace.serial_ms += ms_since(t0);
 }
 
-void BodyHierarchy::refit(const FeatureBounds& swept_dops, PhaseTrace& trace) {
+void BodyHierarchy::refit(const FeatureBounds& swept_dops, double end_reach, PhaseTrace& trace) {
   const BvhTopology& bvh = bvh_;
   std::visit(
       [&](auto& node_bvs) {
@@ -78,23 +78,37 @@ void BodyHierarchy::refit(const FeatureBounds& swept_dops, PhaseTrace& trace) {
         // The leaves first, in node order: their faces and vertex 26-DOPs are scattered reads, which the CPU
         // overlaps across independent iterations (a fused bottom-up sweep measured slower: docs/pipeline.md, §2).
         const SweptFaceBv<BV> swept{mesh_, swept_dops};
+        const bool ends = settings_.end_boxes;
+        if (ends) node_ends_.resize(bvh.nodes.size());
+        const FramePoints* points = swept_dops.frame_points();
+        const double r = end_reach / 2;
         parallel_chunks(bvh.nodes.size(), 2 * kFaceChunk, settings_.threads, trace, [&](std::size_t b, std::size_t e, int) {
           for (std::size_t i = b; i < e; ++i)
-            if (bvh.nodes[i].is_leaf()) node_bvs[i] = swept(bvh.nodes[i].face);
+            if (bvh.nodes[i].is_leaf()) {
+              node_bvs[i] = swept(bvh.nodes[i].face);
+              if (ends) node_ends_[i] = face_end_boxes(points, mesh_.face(bvh.nodes[i].face), r);
+            }
         });
         const RefitPlan& plan = bvh.refit_plan();  // cut again whenever restructuring changed the topology
         const LeavesInPlace leaf_bv;
         parallel_chunks(plan.subtrees.size(), 1, settings_.threads, trace, [&](std::size_t b, std::size_t e, int) {
-          for (std::size_t s = b; s < e; ++s) refit_subtree(bvh, node_bvs, plan.subtrees[s], leaf_bv);
+          for (std::size_t s = b; s < e; ++s) {
+            refit_subtree(bvh, node_bvs, plan.subtrees[s], leaf_bv);
+            if (ends) refit_subtree(bvh, node_ends_, plan.subtrees[s], leaf_bv);
+          }
         });
         const auto t0 = Clock::now();
-        for (Index i : plan.top) refit_node(bvh, node_bvs, i, leaf_bv);
+        for (Index i : plan.top) {
+          refit_node(bvh, node_bvs, i, leaf_bv);
+          if (ends) refit_node(bvh, node_ends_, i, leaf_bv);
+        }
         trace.serial_ms += ms_since(t0);
       },
       node_bvs_);
 }
 
 std::uint64_t BodyHierarchy::restructure(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& swept_dops,
+                                         double end_reach,
                                          const HierarchyBuilder& builder, PhaseTrace& trace) {
   std::uint64_t rebuilt = 0;
   std::visit(
@@ -127,6 +141,10 @@ std::uint64_t BodyHierarchy::restructure(const Positions& x_t0, const Positions&
           // Its leaves now hold other faces: their swept volumes are computed again.
           refit_subtree(bvh_, node_bvs, r, SweptFaceBv<BV>{mesh_, swept_dops});
           for (Index p = bvh_.nodes[r].parent; p >= 0; p = bvh_.nodes[p].parent) refit_node(bvh_, node_bvs, p, LeavesInPlace{});
+          if (settings_.end_boxes) {
+            refit_subtree(bvh_, node_ends_, r, [&](Index f) { return face_end_boxes(swept_dops.frame_points(), mesh_.face(f), end_reach / 2); });
+            for (Index p = bvh_.nodes[r].parent; p >= 0; p = bvh_.nodes[p].parent) refit_node(bvh_, node_ends_, p, LeavesInPlace{});
+          }
           quality_ref_[u] = subtree_quality(bvh_, node_bvs, r);
           ++rebuilt;
         }
@@ -155,14 +173,19 @@ void BodyHierarchy::refit_wide(PhaseTrace& trace) {
         using Vec = BvArray<typename Bounds::Volume>;
         const Vec& bvs = std::get<Vec>(node_bvs_);
         node_wide.resize(layout.lanes.size());
+        if (settings_.end_boxes) wide_ends_.resize(layout.lanes.size());
         parallel_chunks(layout.lanes.size(), 4096, settings_.threads, trace, [&](std::size_t b, std::size_t e, int) {
           for (std::size_t w = b; w < e; ++w) {
             // The lanes are scattered over the binary array: ask for the next nodes' early (memory-bound loop).
             if (w + 8 < e)
               for (Index c : layout.lanes[w + 8].node)
-                if (c >= 0) __builtin_prefetch(&bvs[c]);
+                if (c >= 0) {
+                  __builtin_prefetch(&bvs[c]);
+                  if (settings_.end_boxes) __builtin_prefetch(&node_ends_[c]);
+                }
             if (copy_lanes) node_wide[w].lanes = layout.lanes[w];  // the LaneIds: fixed until the topology changes
             refit_wide_bounds(layout, bvs, Index(w), node_wide[w]);
+            if (settings_.end_boxes) refit_wide_ends(layout, node_ends_, Index(w), wide_ends_[w]);
           }
         });
       },
@@ -185,7 +208,8 @@ void BodyHierarchy::mark_skipped_patches(std::vector<Index>& face_patch) const {
 
 std::size_t BodyHierarchy::memory_bytes() const {
   return bvh_.memory_bytes() + std::visit([](const auto& v) { return v.size() * sizeof(v[0]); }, node_bvs_) +
-         wide_layout_.memory_bytes() + std::visit([](const auto& v) { return v.size() * sizeof(v[0]); }, node_wide_);
+         wide_layout_.memory_bytes() + std::visit([](const auto& v) { return v.size() * sizeof(v[0]); }, node_wide_) +
+         node_ends_.size() * sizeof(EndBoxes) + wide_ends_.size() * sizeof(WideEnds);
 }
 
 }  // namespace ccdlab

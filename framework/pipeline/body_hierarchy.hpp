@@ -29,16 +29,18 @@ class BodyHierarchy {
     int threads = 1;
     double restructure_threshold = 0;  ///< PipelineStrategies::restructure_threshold (0 = off)
     bool normal_cones = false;         ///< cut cone patches (self-colliding bodies only)
+    bool end_boxes = false;            ///< keep every node's EndBoxes (and, width 4, the records' WideEnds)
   };
   /// `faces`: the body's faces; `self_collides`: whether its self pass runs (normal cones serve only that pass).
   BodyHierarchy(const TriMesh& mesh, std::vector<Index> faces, bool self_collides, const Settings& settings);
 
   /// Top-down build over the faces' boxes swept over the step; a new topology.
   void build(const Positions& x_t0, const Positions& x_t1, const HierarchyBuilder& builder, PhaseTrace& trace);
-  /// Every leaf's swept k-DOP (from `swept`), then every inner node's, bottom-up (refit plan).
-  void refit(const FeatureBounds& swept, PhaseTrace& trace);
+  /// Every leaf's swept k-DOP (from `swept`), then every inner node's, bottom-up (refit plan); with end boxes on,
+  /// their EndBoxes too, inflated by end_reach / 2 (CcdPipeline::end_reach).
+  void refit(const FeatureBounds& swept, double end_reach, PhaseTrace& trace);
   /// Rebuilds the degraded sub-trees; returns how many were rebuilt.
-  std::uint64_t restructure(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& swept,
+  std::uint64_t restructure(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& swept, double end_reach,
                             const HierarchyBuilder& builder, PhaseTrace& trace);
   /// Whether the topology changed since follow_topology last ran (then call it before refit_wide and update_cones).
   [[nodiscard]] bool topology_changed() const { return followed_version_ != bvh_.version; }
@@ -56,6 +58,9 @@ class BodyHierarchy {
   [[nodiscard]] const AnyBvs& node_bvs() const { return node_bvs_; }
   [[nodiscard]] const WideLayout& wide_layout() const { return wide_layout_; }
   [[nodiscard]] const AnyWideBvs& node_wide() const { return node_wide_; }
+  /// With end boxes on: every node's EndBoxes, and (width 4) every record's lanes' (WideEnds); empty otherwise.
+  [[nodiscard]] const BvArray<EndBoxes>& node_ends() const { return node_ends_; }
+  [[nodiscard]] const WideEndsArray& wide_ends() const { return wide_ends_; }
   [[nodiscard]] const std::vector<Index>& skip_root() const { return skip_root_; }
   [[nodiscard]] bool has_cones() const { return cones_ != nullptr; }
   [[nodiscard]] std::uint64_t contour_edge_tests() const { return cones_ ? cones_->contour_edge_tests() : 0; }
@@ -70,6 +75,8 @@ class BodyHierarchy {
   AnyBvs node_bvs_;         ///< index = node; a leaf holds its face's swept volume
   WideLayout wide_layout_;  ///< width 4
   AnyWideBvs node_wide_;    ///< width 4: refit from node_bvs_ after the binary refit (and restructuring)
+  BvArray<EndBoxes> node_ends_;  ///< per node: its box at each end of the step
+  WideEndsArray wide_ends_;      ///< width 4: per record, its lanes' node_ends_
   bool wide_lanes_stale_ = false;  ///< follow_topology cut the layout: refit_wide copies the records' lanes again
   std::uint64_t followed_version_ = ~0ull;
   // Adaptive restructuring units: disjoint sub-trees of ≤ max(64, n/64) leaves, and their reference quality.

@@ -5,13 +5,15 @@
 
 namespace ccdlab {
 
-FacePairs brute_force_candidates(const TriMesh& mesh, const CollisionRules& rules, const AnyBvs& face_bvs) {
+FacePairs brute_force_candidates(const TriMesh& mesh, const CollisionRules& rules, const AnyBvs& face_bvs,
+                                 std::span<const EndBoxes> face_ends) {
   FacePairs out;
+  const auto apart = [&](Index a, Index b) { return !face_ends.empty() && apart_at_both_ends(face_ends[a], face_ends[b]); };
   std::visit(
       [&](const auto& bvs) {
         for (Index a = 0; a < mesh.num_faces(); ++a)
           for (Index b = a + 1; b < mesh.num_faces(); ++b)
-            if (rules.faces_may_collide(mesh, a, b) && bvs[a].overlaps(bvs[b])) out.push_back({a, b});
+            if (rules.faces_may_collide(mesh, a, b) && bvs[a].overlaps(bvs[b]) && !apart(a, b)) out.push_back({a, b});
       },
       face_bvs);
   return out;

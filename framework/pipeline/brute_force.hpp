@@ -1,7 +1,10 @@
 #pragma once
 // Brute-force references for small meshes (O(n²)): the broad phase checks its candidates against every face
 // pair, the whole pipeline its contacts against every feature pair (no BVH, no ownership, no culling).
+#include <span>
 #include <vector>
+
+#include "framework/hierarchy/end_boxes.hpp"
 
 #include "framework/pipeline/bodies.hpp"
 #include "framework/primitive/tester.hpp"
@@ -10,8 +13,10 @@
 
 namespace ccdlab {
 
-/// All face pairs (a < b) that may collide under `rules` and whose face BVs overlap, sorted.
-FacePairs brute_force_candidates(const TriMesh& mesh, const CollisionRules& rules, const AnyBvs& face_bvs);
+/// All face pairs (a < b) that may collide under `rules` and whose face BVs overlap, sorted; with `face_ends`
+/// (one per face), only those not apart at both ends (framework/hierarchy/end_boxes.hpp).
+FacePairs brute_force_candidates(const TriMesh& mesh, const CollisionRules& rules, const AnyBvs& face_bvs,
+                                 std::span<const EndBoxes> face_ends = {});
 
 /// All colliding feature pairs: every VF (v ∉ f) and EE (no shared vertex) pair of interacting bodies,
 /// each tested with `tester`. Sorted like CcdPipeline's contacts. With `box_cull`, pairs whose swept feature

@@ -22,7 +22,7 @@ void PipelineStrategies::validate() const {
     fail("normal_cones: culling is exact only for contact at zero distance; got tester thickness {}", tester->thickness());
 }
 
-std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std::size_t orphan_pairs) {
+std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std::size_t orphan_pairs, bool end_boxes) {
   const std::uint64_t v = std::uint64_t(mesh.num_vertices()), e = std::uint64_t(mesh.num_edges()),
                       f = std::uint64_t(mesh.num_faces());
   const std::uint64_t bv = std::visit([](const auto& vec) { return std::uint64_t(sizeof(vec[0])); }, make_bvs(k));
@@ -40,7 +40,9 @@ std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std
                                 f * (sizeof(std::uint32_t) + sizeof(std::uint64_t));
   // The frames, and stage 0's float copy with its faces' boxes (framework/narrow/frame_points.hpp).
   const std::uint64_t frames = 2 * v * sizeof(Vec3) + v * sizeof(FloatFramePoints) + f * sizeof(FloatFaceBoxes);
-  return bvh + wide + feature_boxes + ownership + orphans + frames;
+  // End boxes: per node, and per wide node (framework/hierarchy/end_boxes.hpp).
+  const std::uint64_t ends = end_boxes ? 2 * f * sizeof(EndBoxes) + (width == 4 ? f * sizeof(WideEnds) : 0) : 0;
+  return bvh + wide + feature_boxes + ownership + orphans + frames + ends;
 }
 
 namespace {
@@ -66,7 +68,8 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
       narrow_driver_(narrow_, strategies_.threads) {
   if (const std::uint64_t limit = strategies_.memory_limit; limit > 0) {
     const std::uint64_t resident = current_rss_bytes(),
-                        need = estimate_pipeline_bytes(mesh_, strategies_.k, strategies_.width, orphans().vf.size() + orphans().ee.size());
+                        need = estimate_pipeline_bytes(mesh_, strategies_.k, strategies_.width, orphans().vf.size() + orphans().ee.size(),
+                                                       end_boxes_on());
     if (resident + need > limit)
       fail("memory_limit {}: this run needs about {} before its first step ({} resident now with the scene, {} more "
            "for the BVH, feature boxes and orphan set of {} triangles); lower the scene's size or raise memory_limit",
@@ -74,7 +77,7 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
            mesh_.num_faces());
   }
   const BodyHierarchy::Settings settings{strategies_.k, strategies_.width, strategies_.threads,
-                                         strategies_.restructure_threshold, strategies_.normal_cones};
+                                         strategies_.restructure_threshold, strategies_.normal_cones, end_boxes_on()};
   const auto& bl = rules_.bodies();
   bodies_.reserve(bl.size());  // the passes point into the bodies: no reallocation after this
   for (std::size_t b = 0; b < bl.size(); ++b) {
@@ -96,6 +99,10 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
       pass.wide_layout_b = &b.wide_layout();
       pass.wide_b = &b.node_wide();
     }
+    if (end_boxes_on()) {
+      pass.ends_a = &a.node_ends(), pass.ends_b = &b.node_ends();
+      if (strategies_.width == 4) pass.wide_ends_a = &a.wide_ends(), pass.wide_ends_b = &b.wide_ends();
+    }
     traversal_.add_pass(pass);
   };
   for (int i = 0; i < int(bl.size()); ++i)
@@ -106,6 +113,13 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
 }
 
 CcdPipeline::~CcdPipeline() = default;
+
+bool CcdPipeline::end_boxes_on() const { return strategies_.end_boxes && strategies_.tester->cull_reach().has_value(); }
+
+double CcdPipeline::end_reach() const {
+  const CullReach reach = *strategies_.tester->cull_reach();
+  return end_boxes_reach(reach.abs, reach.rel, swept_.scene_extent());
+}
 
 StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   if (Index(x_t0.size()) != mesh_.num_vertices() || Index(x_t1.size()) != mesh_.num_vertices())
@@ -131,10 +145,12 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   narrow_.begin_step(x_t0, x_t1, swept_);
 
   // 2. Body hierarchies: refit, restructure, then what hangs on the topology.
-  for (BodyHierarchy& body : bodies_) clock.parallel("refit", &tm.refit_ms, [&](PhaseTrace& t) { body.refit(swept_, t); });
+  const double end_reach = end_boxes_on() ? this->end_reach() : 0;
+  for (BodyHierarchy& body : bodies_)
+    clock.parallel("refit", &tm.refit_ms, [&](PhaseTrace& t) { body.refit(swept_, end_reach, t); });
   if (strategies_.restructure_threshold > 0)
     clock.parallel("restructure", &tm.refit_ms, [&](PhaseTrace& t) {
-      for (BodyHierarchy& body : bodies_) result.counters.restructured += body.restructure(x_t0, x_t1, swept_, builder, t);
+      for (BodyHierarchy& body : bodies_) result.counters.restructured += body.restructure(x_t0, x_t1, swept_, end_reach, builder, t);
     });
   for (BodyHierarchy& body : bodies_)
     if (body.topology_changed()) clock.serial("build", &tm.build_ms, [&] { body.follow_topology(); });

@@ -36,6 +36,9 @@ struct PipelineStrategies {
   double restructure_threshold = 0;
   /// Continuous normal-cone culling of self tests (framework/traversal/normal_cones.hpp); thickness 0 only.
   bool normal_cones = false;
+  /// End boxes (framework/hierarchy/end_boxes.hpp): the traversal also drops node pairs apart on x, y or z at both
+  /// ends of the step. Needs the tester's reach (PrimitiveTester::cull_reach); off for a tester without one.
+  bool end_boxes = false;
   /// Bytes the process may hold resident during a step (0 = no limit): above the predicted need, a step streams
   /// its candidates to the narrow phase slice by slice (framework/pipeline/memory_budget.hpp).
   std::uint64_t memory_limit = 0;
@@ -92,7 +95,15 @@ class CcdPipeline {
   /// Bytes of the pipeline's persistent data (topology, ownership, orphans, BVHs).
   [[nodiscard]] std::size_t memory_bytes() const;
 
+  /// Whether the traversal tests end boxes (framework/hierarchy/end_boxes.hpp): asked for, and the tester has a
+  /// reach.
+  [[nodiscard]] bool end_boxes_on() const;
+
  private:
+  /// The distance beyond which the tester reports no pair, for every pair of this step (its reach at the scene's
+  /// size): end boxes are inflated by half of it.
+  [[nodiscard]] double end_reach() const;
+
   const TriMesh& mesh_;
   CollisionRules rules_;
   PipelineStrategies strategies_;
@@ -110,6 +121,7 @@ class CcdPipeline {
 /// the faces' swept volumes; and their 4-wide view for width 4), the feature bounds, the ownership, the orphan set
 /// and the two frames of a step. Checked against memory_limit when a pipeline is made, so that a run too large for
 /// the machine is refused before it starts.
-std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std::size_t orphan_pairs);
+std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std::size_t orphan_pairs,
+                                      bool end_boxes = false);
 
 }  // namespace ccdlab

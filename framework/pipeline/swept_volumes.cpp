@@ -41,4 +41,15 @@ void compute_face_bvs(const TriMesh& mesh, const Positions& x0, const Positions&
       out);
 }
 
+std::vector<EndBoxes> compute_face_end_boxes(const TriMesh& mesh, const Positions& x0, const Positions& x1,
+                                             double thickness, const CullReach& reach) {
+  PhaseTrace unused;
+  FeatureBounds vertex_dops;
+  vertex_dops.update(x0, x1, thickness, 1, unused);
+  const double r = end_boxes_reach(reach.abs, reach.rel, vertex_dops.scene_extent()) / 2;
+  std::vector<EndBoxes> out(std::size_t(mesh.num_faces()));
+  for (Index f = 0; f < mesh.num_faces(); ++f) out[std::size_t(f)] = face_end_boxes(vertex_dops.frame_points(), mesh.face(f), r);
+  return out;
+}
+
 }  // namespace ccdlab

@@ -4,7 +4,9 @@
 // vertices', SweptFaceBv) and the narrow phase culls feature pairs with it (its stage 1). Neither owns it: the
 // pipeline hands it to both.
 #include "framework/mesh/tri_mesh.hpp"
+#include "framework/hierarchy/end_boxes.hpp"
 #include "framework/narrow/feature_bounds.hpp"
+#include "framework/primitive/tester.hpp"
 #include "framework/traversal/scheduler.hpp"  // AnyBvs, AnyWideBvs
 #include "framework/util/parallel.hpp"
 
@@ -31,5 +33,10 @@ AnyWideBvs make_wide_bvs(int k);
 /// face-indexed array is for references (brute force) and benchmarks.
 void compute_face_bvs(const TriMesh& mesh, const Positions& x_t0, const Positions& x_t1, double thickness, AnyBvs& out,
                       int threads = 1, PhaseTrace* trace = nullptr);
+
+/// Every face's EndBoxes (framework/hierarchy/end_boxes.hpp), inflated as the pipeline inflates them for a tester
+/// of reach `reach`: for references (brute force) and tests.
+std::vector<EndBoxes> compute_face_end_boxes(const TriMesh& mesh, const Positions& x0, const Positions& x1,
+                                             double thickness, const CullReach& reach);
 
 }  // namespace ccdlab

@@ -65,7 +65,7 @@ void traverse_bvtt_binary(const BvttView<BV>& v, BvttNode start, std::vector<Bvt
       }
     } else {
       ++bv_tests;
-      if (bva[n.a].overlaps(bvb[n.b])) {
+      if (v.nodes_overlap(n.a, n.b)) {
         const BvhNode& B = nb[n.b];
         if (A.is_leaf() && B.is_leaf()) {
           if (pout == pend) [[unlikely]] {

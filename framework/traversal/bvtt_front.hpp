@@ -87,7 +87,7 @@ void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNod
         break;
       }
       ++c.bv_tests;
-      if (bva[pa].overlaps(bvb[pb])) break;
+      if (v.nodes_overlap(pa, pb)) break;
       next.pop_back();
       next.back() = FrontNode{pa, pb, 0};
       ++c.pruned;
@@ -106,7 +106,7 @@ void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNod
     const BvhNode& A = na[fa];
     const BvhNode& B = nb[fb];
     const bool fresh = fflags & FrontNode::kFresh;
-    if (!bva[fa].overlaps(bvb[fb])) {
+    if (!v.nodes_overlap(fa, fb)) {
       push_stop(FrontNode{fa, fb, std::uint8_t(fresh ? FrontNode::kFresh : 0)});
       continue;
     }
@@ -126,7 +126,7 @@ void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNod
       bool stop = false;
       if (!first) {
         ++c.bv_tests;
-        if (!bva[n.a].overlaps(bvb[n.b])) {
+        if (!v.nodes_overlap(n.a, n.b)) {
           next.push_back(FrontNode{n.a, n.b, FrontNode::kFresh});
           stop = true;
         } else if (X.is_leaf() && Y.is_leaf()) {

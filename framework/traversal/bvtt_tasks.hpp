@@ -34,7 +34,7 @@ std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t wa
         continue;
       }
       ++out.bv_tests;
-      if (!(*v.bv_a)[n.a].overlaps((*v.bv_b)[n.b])) continue;
+      if (!v.nodes_overlap(n.a, n.b)) continue;
       const BvhNode& B = nb[n.b];
       if (A.is_leaf() && B.is_leaf()) {
         v.emit_leaf_pair(A, B, out.pairs.part(0));

@@ -31,10 +31,22 @@ struct BvttView {
   const WideBvs<BV>* wide_a = nullptr;
   const WideLayout* wide_layout_b = nullptr;
   const WideBvs<BV>* wide_b = nullptr;
+  /// End boxes of both hierarchies' nodes (framework/hierarchy/end_boxes.hpp), or nullptr: then only the k-DOPs
+  /// decide whether two nodes overlap.
+  const EndBoxes* ends_a = nullptr;
+  const EndBoxes* ends_b = nullptr;
+  /// The same, per wide record (width 4 with end boxes).
+  const WideEnds* wide_ends_a = nullptr;
+  const WideEnds* wide_ends_b = nullptr;
   [[nodiscard]] bool wide() const { return wide_a && wide_b; }
   /// The lane-pair walk of the wide view (traverse_bvtt_lane_pairs) to take, if any: set where the view is
   /// made, from lane_pair_walk(), so that a traversal call does not ask again.
   LanePairWalk lane_pairs = LanePairWalk::none;
+  /// THE test of a pair node (a, b), every binary walk's: their k-DOPs overlap and, with end boxes, they are not
+  /// apart at both ends. (The wide walks test the same on a record's lanes: wide_overlap.hpp.)
+  [[nodiscard]] bool nodes_overlap(Index a, Index b) const {
+    return (*bv_a)[a].overlaps((*bv_b)[b]) && !(ends_a && apart_at_both_ends(ends_a[a], ends_b[b]));
+  }
   /// Appends the candidate of two overlapping leaves (ordered (min, max) in self passes; none when adjacent).
   /// Returns whether one was appended.
   bool emit_leaf_pair(const BvhNode& A, const BvhNode& B, FacePairs& out) const {

@@ -64,6 +64,8 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
   const Index* const home_b = v.wide_layout_b->home.data();
   const WideBounds<BV>* const wide_a = v.wide_a->data();
   const WideBounds<BV>* const wide_b = v.wide_b->data();
+  const WideEnds* const wide_ends_a = v.wide_ends_a;  // end boxes on: both, else neither
+  const WideEnds* const wide_ends_b = v.wide_ends_b;
   const Index* const skip_root = v.skip_root;
   const bool self = v.self;
   std::uint64_t bv_tests = 0;
@@ -83,7 +85,7 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
   bool visit = true;
   if (!(self && start.a == start.b)) {
     ++bv_tests;
-    visit = bva[start.a].overlaps(bvb[start.b]);
+    visit = v.nodes_overlap(start.a, start.b);
     if (visit) n = pair_entry(start.a, start.b);
   }
   const auto emit = [&](const WideBvttEntry& leaves) {  // the candidate of two overlapping leaves
@@ -109,7 +111,7 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
         const BvhNode& A = na[n.ha];
         if (!A.is_leaf() && !(skip_root && skip_root[n.ha] >= 0)) {  // BvttView::self_opens / self_children,
           ++bv_tests;                                                   // (L, R) tested before it is stacked
-          if (bva[A.left].overlaps(bva[A.right])) *top++ = pair_entry(A.left, A.right);
+          if (v.nodes_overlap(A.left, A.right)) *top++ = pair_entry(A.left, A.right);
           *top++ = {A.right, A.right, -1, -1, 0, 0};
           n = {A.left, A.left, -1, -1, 0, 0};
           continue;
@@ -119,10 +121,12 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
       } else {
         const bool down_a = n.descends_a();
         const auto side_of = [&](bool a_side) { return a_side ? wide_a : wide_b; };
+        const auto ends_of = [&](bool a_side) { return a_side ? wide_ends_a : wide_ends_b; };
         const Index rx = down_a ? n.wa : n.wb;  // the record opened
         const WideBounds<BV>& bx = side_of(down_a)[rx];
         const Index h = down_a ? n.hb : n.ha;  // the other side's home
         unsigned hit = overlapping_lanes(bx, WideLane<BV>{side_of(!down_a) + h / W, h % W});
+        if (wide_ends_a) hit &= ~lanes_apart_at_both_ends(ends_of(down_a)[rx], ends_of(!down_a)[h / W], h % W);
         bv_tests += used_lanes(bx);
         if (hit) {
           lane_sizes(bx, size);
@@ -159,6 +163,7 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
             }
             const WideBounds<BV>& by = side_of(!down_a)[ry];
             unsigned hit_y = overlapping_lanes(by, WideLane<BV>{&bx, j});
+            if (wide_ends_a) hit_y &= ~lanes_apart_at_both_ends(ends_of(!down_a)[ry], ends_of(down_a)[rx], j);
             bv_tests += used_lanes(by);
             if (hit_y && !sized_y) lane_sizes(by, size_y), sized_y = true;
             for (; hit_y; hit_y &= hit_y - 1) settle(lane_child(c, !down_a, ry, by, size_y, std::countr_zero(hit_y)));
@@ -209,6 +214,8 @@ struct LanePairCursor {
   Index* col_wb;
   std::size_t top;  ///< entries on the stack
   FacePair* pout;   ///< where the next candidate goes (room for W · W more, checked by the caller)
+  const WideEnds* ends_a;  ///< end boxes of the records' lanes (BvttView::wide_ends_a), or nullptr
+  const WideEnds* ends_b;
 };
 
 /// What one pair visit found among its `allowed` lane pairs (bit 4i + j: lane i of record a, lane j of record b).
@@ -237,9 +244,15 @@ inline void prefetch_entry_records(const WideBounds<BV>* wide_a, const WideBound
                                    std::size_t i) {
   constexpr int W = WideLayout::kWidth;
   const Index wa = c.col_wa[i], wb = c.col_wb[i];
-  const char* ra = reinterpret_cast<const char*>(wide_a + (wa >= 0 ? wa : c.col_ha[i] / W));
-  const char* rb = reinterpret_cast<const char*>(wide_b + (wb >= 0 ? wb : c.col_hb[i] / W));
+  const Index a = wa >= 0 ? wa : c.col_ha[i] / W, b = wb >= 0 ? wb : c.col_hb[i] / W;
+  const char* ra = reinterpret_cast<const char*>(wide_a + a);
+  const char* rb = reinterpret_cast<const char*>(wide_b + b);
   for (std::size_t line = 0; line < sizeof(WideBounds<BV>); line += 64) __builtin_prefetch(ra + line), __builtin_prefetch(rb + line);
+  if (c.ends_a) {
+    const char* ea = reinterpret_cast<const char*>(c.ends_a + a);
+    const char* eb = reinterpret_cast<const char*>(c.ends_b + b);
+    for (std::size_t line = 0; line < sizeof(WideEnds); line += 64) __builtin_prefetch(ea + line), __builtin_prefetch(eb + line);
+  }
 }
 
 namespace detail {
@@ -283,7 +296,8 @@ CCDLAB_AVX512_TARGET __attribute__((always_inline)) inline LanePairAnswer visit_
   const __m512i rows = CCDLAB_LANE_ROWS;  // lane 4i + j: row i (a's lane), column j (b's lane)
   const __m512i cols = _mm512_set_epi32(3, 2, 1, 0, 3, 2, 1, 0, 3, 2, 1, 0, 3, 2, 1, 0);
   const auto load4 = [](const Index* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); };
-  const unsigned all = overlapping_lane_pairs(A, B);
+  unsigned all = overlapping_lane_pairs(A, B);
+  if (cur.ends_a) all &= ~lane_pairs_apart_at_both_ends(cur.ends_a[ra], cur.ends_b[rb]);
   const unsigned hit = all & allowed;
   // Each lane pair's slots; a slot < 0 is a leaf (~face).
   const __m512i sa = _mm512_permutexvar_epi32(rows, _mm512_castsi128_si512(load4(A.lanes.slot.data())));
@@ -367,7 +381,8 @@ CCDLAB_AVX2_TARGET __attribute__((always_inline)) inline LanePairAnswer visit_la
   constexpr int W = WideLayout::kWidth;
   const __m256i rows[2] = {_mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1), _mm256_setr_epi32(2, 2, 2, 2, 3, 3, 3, 3)};
   const __m256i cols = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3);
-  const unsigned all = overlapping_lane_pairs_avx2(A, B);
+  unsigned all = overlapping_lane_pairs_avx2(A, B);
+  if (cur.ends_a) all &= ~lane_pairs_apart_at_both_ends_avx2(cur.ends_a[ra], cur.ends_b[rb]);
   const unsigned hit = all & allowed;
   const __m256i sa[2] = {spread(A.lanes.slot.data(), rows[0]), spread(A.lanes.slot.data(), rows[1])};
   const __m256i sb = repeat(B.lanes.slot.data());

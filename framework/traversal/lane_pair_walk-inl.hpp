@@ -27,7 +27,7 @@ CCDLAB_WALK_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode
   const bool self = v.self;
   std::uint64_t bv_tests = 0;
   // A visit pushes at most 16 pair nodes, or 2 for a self node; room is checked before each visit.
-  LanePairCursor cur{nullptr, nullptr, nullptr, nullptr, 0, nullptr};
+  LanePairCursor cur{nullptr, nullptr, nullptr, nullptr, 0, nullptr, v.wide_ends_a, v.wide_ends_b};
   const auto make_room = [&](std::size_t n) {
     stack.reserve(n, cur.top);
     cur.col_ha = stack.column(0), cur.col_hb = stack.column(1), cur.col_wa = stack.column(2), cur.col_wb = stack.column(3);
@@ -47,7 +47,7 @@ CCDLAB_WALK_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode
   bool visit = true;
   if (!(self && start.a == start.b)) {
     ++bv_tests;
-    visit = bva[start.a].overlaps(bvb[start.b]);
+    visit = v.nodes_overlap(start.a, start.b);
     ha = home_a[start.a], hb = home_b[start.b], wa = slot_a[start.a], wb = slot_b[start.b];
   }
   for (;;) {

@@ -18,7 +18,7 @@ CCDLAB_WALK_TARGET void process_wide_front(const BvttView<BV>& v, const WideFron
   const BvhNode* const na = v.bvh_a->nodes.data();
   const bool self = v.self;
   FrontCounters c;  // local: the caller's are written once, at the end
-  LanePairCursor cur{nullptr, nullptr, nullptr, nullptr, 0, nullptr};
+  LanePairCursor cur{nullptr, nullptr, nullptr, nullptr, 0, nullptr, v.wide_ends_a, v.wide_ends_b};
   const auto make_room = [&](std::size_t n) {
     stack.reserve(n, cur.top);
     cur.col_ha = stack.column(0), cur.col_hb = stack.column(1), cur.col_wa = stack.column(2), cur.col_wb = stack.column(3);
@@ -90,7 +90,9 @@ CCDLAB_WALK_TARGET void process_wide_front(const BvttView<BV>& v, const WideFron
     const Seen& s = seen[seen_slot(hx / W, hy / W)];
     if (s.ra == hx / W && s.rb == hy / W) return (s.all >> (W * (hx % W) + hy % W) & 1u) != 0;
     ++c.bv_tests;
-    return (overlapping_lanes(wide_b[hy / W], WideLane<BV>{wide_a + hx / W, hx % W}) >> (hy % W) & 1u) != 0;
+    unsigned hit = overlapping_lanes(wide_b[hy / W], WideLane<BV>{wide_a + hx / W, hx % W});
+    if (cur.ends_a) hit &= ~lanes_apart_at_both_ends(cur.ends_b[hy / W], cur.ends_a[hx / W], hx % W);
+    return (hit >> (hy % W) & 1u) != 0;
   };
   // Appends a group, merged into the last one when it holds the same two records; then, while the last group is
   // quiet and is one node pair's whole visit, and that node pair does not overlap, prunes it into that node pair.

@@ -62,6 +62,28 @@ inline unsigned overlapping_lane_pairs_plain(const WideBounds<BV>& a, const Wide
   return mask;
 }
 
+/// Bit j set ⇔ lane j of w and lane k of q are apart at both ends of the step on one of x, y, z, on the same
+/// side (apart_at_both_ends, end_boxes.hpp, on WideEnds lanes).
+inline unsigned lanes_apart_at_both_ends_plain(const WideEnds& w, const WideEnds& q, int k) {
+  unsigned mask = 0;
+  for (int j = 0; j < WideLayout::kWidth; ++j) {
+    bool apart = false;
+    for (int c = 0; c < 3; ++c) {
+      apart |= (w.hi[0][c][j] < q.lo[0][c][k]) & (w.hi[1][c][j] < q.lo[1][c][k]);
+      apart |= (q.hi[0][c][k] < w.lo[0][c][j]) & (q.hi[1][c][k] < w.lo[1][c][j]);
+    }
+    mask |= unsigned(apart) << j;
+  }
+  return mask;
+}
+
+/// Bit 4i + j set ⇔ lane i of a and lane j of b are apart at both ends of the step.
+inline unsigned lane_pairs_apart_at_both_ends_plain(const WideEnds& a, const WideEnds& b) {
+  unsigned mask = 0;
+  for (int i = 0; i < WideLayout::kWidth; ++i) mask |= lanes_apart_at_both_ends_plain(b, a, i) << (4 * i);
+  return mask;
+}
+
 /// Which lane-pair walk traverse_bvtt and the wide front take: the best of AVX-512 and AVX2 that this CPU has and
 /// CCDLAB_SIMD (Highway's supported targets) allows, or none (the SSE2 walk, traverse_bvtt_wide, and the binary
 /// front). Cheap (Highway's chosen target, no CPUID): asked once per traversal call.
@@ -86,6 +108,16 @@ inline unsigned overlapping_lanes(const WideBounds<BV>& w, const Query& q) {
     apart = _mm_or_ps(apart, _mm_cmpgt_ps(_mm_set1_ps(q.min(i)), _mm_load_ps(w.hi[i])));
   }
   return ~unsigned(_mm_movemask_ps(apart)) & 0xFu;
+}
+
+inline unsigned lanes_apart_at_both_ends(const WideEnds& w, const WideEnds& q, int k) {
+  __m128 apart = _mm_setzero_ps();
+  for (int c = 0; c < 3; ++c) {
+    const auto below = [&](int f) { return _mm_cmplt_ps(_mm_load_ps(w.hi[f][c]), _mm_set1_ps(q.lo[f][c][k])); };
+    const auto above = [&](int f) { return _mm_cmplt_ps(_mm_set1_ps(q.hi[f][c][k]), _mm_load_ps(w.lo[f][c])); };
+    apart = _mm_or_ps(apart, _mm_or_ps(_mm_and_ps(below(0), below(1)), _mm_and_ps(above(0), above(1))));
+  }
+  return unsigned(_mm_movemask_ps(apart));
 }
 
 template <class BV>
@@ -116,6 +148,22 @@ CCDLAB_AVX512_TARGET __attribute__((always_inline)) inline unsigned overlapping_
   return unsigned(~apart) & 0xFFFFu;
 }
 
+/// lane_pairs_apart_at_both_ends_plain in AVX-512: per axis and side, the two ends' compares of the 16 lane pairs.
+CCDLAB_AVX512_TARGET __attribute__((always_inline)) inline unsigned lane_pairs_apart_at_both_ends(const WideEnds& a,
+                                                                                                 const WideEnds& b) {
+  const __m512i rows = CCDLAB_LANE_ROWS;
+#define row(p) _mm512_permutexvar_ps(rows, _mm512_castps128_ps512(_mm_load_ps(p)))
+#define col(p) _mm512_broadcast_f32x4(_mm_load_ps(p))
+  __mmask16 apart = 0;
+  for (int c = 0; c < 3; ++c) {
+    apart |= _mm512_cmp_ps_mask(row(a.hi[0][c]), col(b.lo[0][c]), _CMP_LT_OQ) & _mm512_cmp_ps_mask(row(a.hi[1][c]), col(b.lo[1][c]), _CMP_LT_OQ);
+    apart |= _mm512_cmp_ps_mask(col(b.hi[0][c]), row(a.lo[0][c]), _CMP_LT_OQ) & _mm512_cmp_ps_mask(col(b.hi[1][c]), row(a.lo[1][c]), _CMP_LT_OQ);
+  }
+#undef row
+#undef col
+  return unsigned(apart);
+}
+
 /// overlapping_lane_pairs in AVX2: the same 16 lanes as two 8-float halves (rows 0–1 and 2–3), same answer.
 template <class BV>
 CCDLAB_AVX2_TARGET __attribute__((always_inline)) inline unsigned overlapping_lane_pairs_avx2(const WideBounds<BV>& a,
@@ -135,9 +183,34 @@ CCDLAB_AVX2_TARGET __attribute__((always_inline)) inline unsigned overlapping_la
   const unsigned apart = unsigned(_mm256_movemask_ps(apart01)) | unsigned(_mm256_movemask_ps(apart23)) << 8;
   return ~apart & 0xFFFFu;
 }
+
+/// lane_pairs_apart_at_both_ends in AVX2: the same 16 lanes as two 8-float halves, same answer.
+CCDLAB_AVX2_TARGET __attribute__((always_inline)) inline unsigned lane_pairs_apart_at_both_ends_avx2(const WideEnds& a,
+                                                                                                    const WideEnds& b) {
+  const __m256i rows[2] = {_mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1), _mm256_setr_epi32(2, 2, 2, 2, 3, 3, 3, 3)};
+#define CCDLAB_ROW(p, h) _mm256_permutevar8x32_ps(_mm256_castps128_ps256(_mm_load_ps(p)), rows[h])
+#define CCDLAB_COL(p) _mm256_broadcast_ps(reinterpret_cast<const __m128*>(p))
+  unsigned apart = 0;
+  for (int h = 0; h < 2; ++h) {
+    __m256 m = _mm256_setzero_ps();
+    for (int c = 0; c < 3; ++c) {
+      m = _mm256_or_ps(m, _mm256_and_ps(_mm256_cmp_ps(CCDLAB_ROW(a.hi[0][c], h), CCDLAB_COL(b.lo[0][c]), _CMP_LT_OQ),
+                                        _mm256_cmp_ps(CCDLAB_ROW(a.hi[1][c], h), CCDLAB_COL(b.lo[1][c]), _CMP_LT_OQ)));
+      m = _mm256_or_ps(m, _mm256_and_ps(_mm256_cmp_ps(CCDLAB_COL(b.hi[0][c]), CCDLAB_ROW(a.lo[0][c], h), _CMP_LT_OQ),
+                                        _mm256_cmp_ps(CCDLAB_COL(b.hi[1][c]), CCDLAB_ROW(a.lo[1][c], h), _CMP_LT_OQ)));
+    }
+    apart |= unsigned(_mm256_movemask_ps(m)) << (8 * h);
+  }
+#undef CCDLAB_ROW
+#undef CCDLAB_COL
+  return apart;
+}
 #endif
 
 #if !defined(__SSE2__)
+inline unsigned lanes_apart_at_both_ends(const WideEnds& w, const WideEnds& q, int k) {
+  return lanes_apart_at_both_ends_plain(w, q, k);
+}
 template <class BV, class Query>
 inline unsigned overlapping_lanes(const WideBounds<BV>& w, const Query& q) {
   return overlapping_lanes_plain(w, q);

@@ -131,7 +131,7 @@ void EmbreeScheduler::collect(const TraversalPass& pass, TraversalOutput& out, s
       const Index na = a.leaf_node[i], nb = other.leaf_node[j];
       if (pass.self && na == nb) continue;
       ++tests;
-      if (!(*view.bv_a)[na].overlaps((*view.bv_b)[nb])) continue;
+      if (!view.nodes_overlap(na, nb)) continue;
       view.emit_leaf_pair(view.bvh_a->nodes[na], view.bvh_b->nodes[nb], pairs);
     }
     std::sort(pairs.begin(), pairs.end());

@@ -3,6 +3,8 @@
 // prunes and rebuilds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <array>
 #include <map>
 
@@ -110,6 +112,35 @@ TEST(Schedulers, IdenticalAnswersForEverySchedulerAndThreadCount) {
       EXPECT_EQ(taken.hashes, reference.hashes);
       EXPECT_EQ(taken.work, r.work);
     }
+}
+
+TEST(Schedulers, EndBoxesGiveEverySchedulerWidthAndThreadCountTheSameCandidates) {
+  // bv.end_boxes (framework/hierarchy/end_boxes.hpp) changes which node pairs every walk opens — the binary walk,
+  // the task splits of phc and static, the binary and wide fronts, the SSE2 and lane-pair walks — but never the
+  // leaf pairs they reach together, nor the contacts.
+  const MeshSequence scene = small_scene();
+  const RunResult without = run(scene, make("sequential", {}, 1));
+  PipelineStrategies on = make("sequential", {}, 1);
+  on.end_boxes = true;
+  const RunResult reference = run(scene, std::move(on));
+  EXPECT_EQ(reference.hashes, without.hashes);
+  std::size_t kept = 0, all = 0;
+  for (std::size_t s = 0; s < reference.candidates.size(); ++s) {
+    const FacePairs &a = reference.candidates[s], &b = without.candidates[s];
+    EXPECT_TRUE(std::includes(b.begin(), b.end(), a.begin(), a.end())) << "step " << s;
+    kept += a.size(), all += b.size();
+  }
+  EXPECT_LT(kept, all) << "the end boxes dropped no candidate: the test proves nothing";
+  for (const char* scheduler : {"sequential", "phc", "static", "front"})
+    for (int width : {2, 4})
+      for (int threads : {1, 3}) {
+        SCOPED_TRACE(std::string(scheduler) + " width " + std::to_string(width) + " x" + std::to_string(threads));
+        PipelineStrategies s = make(scheduler, {}, threads);
+        s.width = width, s.end_boxes = true;
+        const RunResult r = run(scene, std::move(s));
+        EXPECT_EQ(r.candidates, reference.candidates);
+        EXPECT_EQ(r.hashes, reference.hashes);
+      }
 }
 
 // phc hands a pass's tasks out largest first by their costs at the last step, only when they are the same tasks

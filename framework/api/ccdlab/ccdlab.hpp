@@ -42,6 +42,7 @@ MeshFile read_mesh(const std::filesystem::path& path);
 struct Options {
   int k = 18;                            ///< bv.k: the k-DOP, 6 / 14 / 18 / 26
   int width = 4;                         ///< bv.width: 2 (binary BVTT) or 4 (wide, SIMD)
+  bool end_boxes = false;                ///< bv.end_boxes: also drop node pairs apart on x, y or z at both ends
   std::string hierarchy = "median";      ///< the BVH builder
   std::string scheduler = "sequential";  ///< sequential, phc, front, static (or embree)
   int threads = 1;
@@ -51,7 +52,7 @@ struct Options {
   bool normal_cones = false;
   std::string memory_limit = "80%";      ///< "8GiB", "60%" (of this machine) or "none"
 
-  /// Options from YAML text with the keys of an experiment's strategy section — bv {k, width}, hierarchy,
+  /// Options from YAML text with the keys of an experiment's strategy section — bv {k, width, end_boxes}, hierarchy,
   /// scheduler, threads, tester, narrow {mode, representative}, normal_cones, memory_limit — and no others.
   /// `source` names the text in errors ("<source>:line: key: expected …, got …").
   static Options from_yaml(std::string_view yaml, std::string_view source = "ccdlab::Options::from_yaml");

@@ -92,7 +92,7 @@ TEST_F(Config, CommandLineOverridesAndTheirErrors) {
   EXPECT_DOUBLE_EQ(c.tester.params.real("thickness"), 0.5);
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\n", {"bv.k=8"}), "--set bv.k: bv.k: expected one of 6, 14, 18, 26, got '8'");
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\n", {"bv.kk=8"}),
-            "--set bv.kk: bv.kk: unknown key (did you mean 'k'?); valid keys are: k, width");
+            "--set bv.kk: bv.kk: unknown key (did you mean 'k'?); valid keys are: k, width, end_boxes");
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\n", {"novalue"}), "--set novalue: expected key=value");
 }
 
