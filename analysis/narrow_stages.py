@@ -3,6 +3,7 @@
 
     /usr/bin/python3 analysis/narrow_stages.py --a BASE_CLI --b build/bin/ccdlab CONFIG.yaml [CONFIG.yaml ...]
         [--rounds 3] [--threads 1] [--a-env CCDLAB_SIMD=avx2] [--b-env ...] [--set scheduler=sequential ...]
+        [--b-set bv.end_boxes=true ...]
 
 Runs `CLI run CONFIG --set threads=T --set output.dir=TMP --no-progress` (a steady config: experiments/configs/
 steady/), A and B alternating (A B, B A, ...), and prints one Markdown row per narrow stage and side: the
@@ -59,13 +60,16 @@ def main():
     ap.add_argument("--a-env", action="append", default=[], help="KEY=VALUE in side A's environment")
     ap.add_argument("--b-env", action="append", default=[])
     ap.add_argument("--set", action="append", default=[], help="a `run --set` for both sides")
+    ap.add_argument("--a-set", action="append", default=[], help="a `run --set` for side A only")
+    ap.add_argument("--b-set", action="append", default=[])
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--rounds", type=int, default=3)
     o = ap.parse_args()
     env = lambda kvs: dict(kv.split("=", 1) for kv in kvs)
-    sides = {"A": (o.a, env(o.a_env)), "B": (o.b, env(o.b_env))}
+    sides = {"A": (o.a, env(o.a_env), o.set + o.a_set), "B": (o.b, env(o.b_env), o.set + o.b_set)}
     print(f"threads {o.threads}, {o.rounds} alternating rounds, medians of steps 2..N. "
-          + ", ".join(f"{k} = `{cli}` {' '.join(f'{x}' for x in e.items())}" for k, (cli, e) in sides.items()) + "\n")
+          + ", ".join(f"{k} = `{cli}` {' '.join(f'{x}' for x in e.items())} {' '.join(sets)}".rstrip()
+                      for k, (cli, e, sets) in sides.items()) + "\n")
     print("| config | stage | A ms | B ms | A pairs in → removed | B pairs in → removed | A ns / pair in | B ns / pair in |")
     print("|---|---|---|---|---|---|---|---|")
     status = 0
@@ -73,8 +77,8 @@ def main():
         runs = {"A": [], "B": []}
         for i in range(o.rounds):
             for side in ("A", "B") if i % 2 == 0 else ("B", "A"):
-                cli, e = sides[side]
-                runs[side].append(run(cli, config, o.threads, o.set, e))
+                cli, e, sets = sides[side]
+                runs[side].append(run(cli, config, o.threads, sets, e))
         hashes = {side: r[0][0]["hash"] for side, r in runs.items()}
         if len(set(hashes.values())) > 1:
             print(f"narrow_stages: {config}: contact hashes differ: {hashes}", file=sys.stderr)
@@ -90,7 +94,8 @@ def main():
                 cell[side] = f"{pin:,}" + (f" → {removed:,}" if removed is not None else "")
                 ns[side] = f"{1e6 * ms[side] / pin:.1f}" if pin else "—"
             print(f"| {name} | {stage} | {ms['A']:.1f} | {ms['B']:.1f} | {cell['A']} | {cell['B']} | {ns['A']} | {ns['B']} |")
-        for key, label in (("narrow", "narrow (candidates)"), ("orphans", "orphans"), ("total", "whole step")):
+        for key, label in (("refit", "refit"), ("traverse", "traversal"), ("narrow", "narrow (candidates)"),
+                           ("orphans", "orphans"), ("total", "whole step")):
             a = statistics.median(s["ms"][key] for s in later["A"])
             b = statistics.median(s["ms"][key] for s in later["B"])
             print(f"| {name} | **{label}** | {a:.1f} | {b:.1f} | | | A/B {a / b:.2f}× | |")

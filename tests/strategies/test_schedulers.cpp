@@ -285,35 +285,41 @@ namespace {
 
 TEST(AdaptiveRestructuring, RebuildsDegradedSubtreesWithoutChangingAnswers) {
   const MeshSequence scene = small_scene();
-  const RunResult reference = run(scene, make("sequential", {}, 1));
-  for (const std::string scheduler : {"sequential", "front", "phc"})
-    for (int threads : {1, 3}) {
-      SCOPED_TRACE(scheduler + " x" + std::to_string(threads));
-      PipelineStrategies s = make(scheduler, {}, threads);
-      s.restructure_threshold = 1.01;  // aggressive: rebuild at the slightest degradation
-      CcdPipeline p(scene.topology(), scene.bodies(), std::move(s));
-      p.keep_candidates(true);
-      std::uint64_t restructured = 0, version_before = 0;
-      Positions x0 = scene.frame(0);
-      for (int i = 0; i < scene.num_steps(); ++i) {
-        Positions x1 = scene.frame(i + 1);
-        version_before = p.bvh(0).version;
-        StepResult r = p.step(x0, x1);
-        restructured += r.counters.restructured;
-        if (r.counters.restructured > 0 && i > 0) {
-          EXPECT_GT(p.bvh(0).version, version_before);
+  // With end boxes, the rebuilt sub-trees' boxes are made again too (BodyHierarchy::restructure).
+  for (const bool end_boxes : {false, true}) {
+    PipelineStrategies base = make("sequential", {}, 1);
+    base.end_boxes = end_boxes;
+    const RunResult reference = run(scene, std::move(base));
+    for (const std::string scheduler : {"sequential", "front", "phc"})
+      for (int threads : {1, 3}) {
+        SCOPED_TRACE(scheduler + " x" + std::to_string(threads) + (end_boxes ? " end boxes" : ""));
+        PipelineStrategies s = make(scheduler, {}, threads);
+        s.restructure_threshold = 1.01;  // aggressive: rebuild at the slightest degradation
+        s.end_boxes = end_boxes;
+        CcdPipeline p(scene.topology(), scene.bodies(), std::move(s));
+        p.keep_candidates(true);
+        std::uint64_t restructured = 0, version_before = 0;
+        Positions x0 = scene.frame(0);
+        for (int i = 0; i < scene.num_steps(); ++i) {
+          Positions x1 = scene.frame(i + 1);
+          version_before = p.bvh(0).version;
+          StepResult r = p.step(x0, x1);
+          restructured += r.counters.restructured;
+          if (r.counters.restructured > 0 && i > 0) {
+            EXPECT_GT(p.bvh(0).version, version_before);
+          }
+          std::vector<Index> faces;
+          for (Index f = scene.bodies()[0].face_begin; f < scene.bodies()[0].face_end; ++f) faces.push_back(f);
+          ASSERT_NO_THROW(validate_bvh(p.bvh(0), faces)) << "step " << i;
+          auto c = p.last_candidates().pairs.flatten();
+          std::sort(c.begin(), c.end());
+          EXPECT_EQ(c, reference.candidates[i]) << "step " << i;
+          EXPECT_EQ(contact_set_hash(r.contacts), reference.hashes[i]) << "step " << i;
+          x0 = std::move(x1);
         }
-        std::vector<Index> faces;
-        for (Index f = scene.bodies()[0].face_begin; f < scene.bodies()[0].face_end; ++f) faces.push_back(f);
-        ASSERT_NO_THROW(validate_bvh(p.bvh(0), faces)) << "step " << i;
-        auto c = p.last_candidates().pairs.flatten();
-        std::sort(c.begin(), c.end());
-        EXPECT_EQ(c, reference.candidates[i]) << "step " << i;
-        EXPECT_EQ(contact_set_hash(r.contacts), reference.hashes[i]) << "step " << i;
-        x0 = std::move(x1);
+        EXPECT_GT(restructured, 0u) << "the folding scene must degrade some sub-trees";
       }
-      EXPECT_GT(restructured, 0u) << "the folding scene must degrade some sub-trees";
-    }
+  }
 }
 
 }  // namespace
