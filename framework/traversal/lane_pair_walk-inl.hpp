@@ -15,8 +15,6 @@ CCDLAB_WALK_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode
                                                    FacePairs& pairs, std::uint64_t& bv_tests_out) {
   constexpr int W = WideLayout::kWidth;
   const BvhNode* const na = v.bvh_a->nodes.data();
-  const BV* const bva = v.bv_a->data();
-  const BV* const bvb = v.bv_b->data();
   const Index* const slot_a = v.wide_layout_a->slot.data();
   const Index* const slot_b = v.wide_layout_b->slot.data();
   const Index* const home_a = v.wide_layout_a->home.data();
