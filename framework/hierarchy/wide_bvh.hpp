@@ -99,7 +99,7 @@ struct WideLane {
 };
 
 template <class BV>
-using WideBvs = UnconstructedVector<WideBounds<BV>>;
+using WideBvs = UnconstructedVector<WideBounds<BV>>;  // large: in huge pages, not value-initialized
 
 /// A wide record's lanes' EndBoxes (end_boxes.hpp), lo[frame][axis][lane]: x, y, z only. Empty lanes hold the
 /// empty boxes (apart from everything; the k-DOP test drops them anyway).
@@ -131,7 +131,7 @@ inline void refit_wide_ends(const WideLayout& layout, const UnconstructedVector<
       for (int j = 0; j < WideLayout::kWidth; ++j) out.lo[f][c][j] = lane[j]->lo[f][c], out.hi[f][c][j] = lane[j]->hi[f][c];
 #endif
   }
-}  // large: in huge pages, not value-initialized
+}
 
 /// Copies the binary volumes of wide node w's lanes into its bounds, once they are refit. (Its LaneIds change
 /// only with the topology: the refit copies them when it cuts the layout.) Empty lanes take the empty k-DOP.
