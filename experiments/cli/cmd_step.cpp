@@ -35,7 +35,7 @@ int step_command(const StepOptions& o) {
   PipelineStrategies s;
   s.k = o.k;
   s.width = o.width;
-  s.end_boxes = o.end_boxes;
+  s.end_boxes = parse_end_box_mode(o.end_boxes);
   s.threads = o.threads;
   s.memory_limit = parse_memory_size(o.memory_limit, "--memory-limit");
   s.narrow = {parse_narrow_mode(o.narrow), parse_representative_rule(o.representative)};
@@ -78,8 +78,8 @@ int step_command(const StepOptions& o) {
     j["orphans"] = {{"vf", pipeline.orphans().vf.size()}, {"ee", pipeline.orphans().ee.size()}};
     j["memory"]["estimate_mb"] =
         double(estimate_pipeline_bytes(mesh, o.k, o.width, pipeline.orphans().vf.size() + pipeline.orphans().ee.size(),
-                                       pipeline.end_boxes_on())) / (1 << 20);
-    j["config"] = {{"k", o.k}, {"bv_width", o.width}, {"end_boxes", o.end_boxes}, {"hierarchy", o.hierarchy}, {"scheduler", o.scheduler}, {"threads", o.threads}, {"tester", o.tester},
+                                       pipeline.end_boxes_kept())) / (1 << 20);
+    j["config"] = {{"k", o.k}, {"bv_width", o.width}, {"end_boxes", end_boxes_json(s.end_boxes)}, {"end_boxes_tested", pipeline.end_boxes_in_last_step()}, {"hierarchy", o.hierarchy}, {"scheduler", o.scheduler}, {"threads", o.threads}, {"tester", o.tester},
                    {"narrow", {{"mode", o.narrow}, {"representative", o.representative}}}, {"memory_limit", o.memory_limit},
                    {"simd_target", plane_filter_target()}};
     fmt::print("{}\n", j.dump(2));

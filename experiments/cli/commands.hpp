@@ -57,7 +57,7 @@ struct StepOptions {
   std::string mesh_t0, mesh_t1;
   int k = 18;
   int width = kDefaultBvhWidth;
-  bool end_boxes = false;
+  std::string end_boxes = "auto";  ///< on, off or auto (bv.end_boxes)
   std::string scheduler = "sequential";
   std::string hierarchy = "median";
   std::string tester = "float";

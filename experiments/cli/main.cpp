@@ -68,7 +68,9 @@ int main(int argc, char** argv) {
   step_cmd->add_option("t1", step.mesh_t1, "mesh at the end of the step (same topology)")->required();
   step_cmd->add_option("--k", step.k, "k-DOP: 6, 14, 18 or 26")->capture_default_str();
   step_cmd->add_option("--bv-width", step.width, "BVH width the traversal reads: 2 (binary) or 4")->capture_default_str();
-  step_cmd->add_flag("--end-boxes", step.end_boxes, "also drop node pairs apart on x, y or z at both ends of the step (bv.end_boxes)");
+  step_cmd->add_flag("--end-boxes{on}", step.end_boxes,
+                     "--end-boxes[=on|off|auto]: also drop node pairs apart on x, y or z at both ends of the step "
+                     "(bv.end_boxes; auto, the default, measures them first: a one-step run does not test them)");
   step_cmd->add_option("--scheduler", step.scheduler, "traversal scheduler")->capture_default_str();
   step_cmd->add_option("--hierarchy", step.hierarchy, "hierarchy builder")->capture_default_str();
   step_cmd->add_option("--threads", step.threads, "threads")->capture_default_str();

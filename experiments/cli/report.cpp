@@ -28,7 +28,7 @@ nlohmann::json step_json(const StepResult& r) {
             {"tests_filtered", c.tests_filtered},
             {"tests_fallback", c.tests_fallback}}},
           {"narrow_stages",  // pairs removed by each culling stage; thread-time of each stage
-           {{"triangle_tested", c.triangle_tested},
+           {{"triangle_tested", c.triangle_tested}, {"triangle_fine", c.triangle_fine},
             {"triangle_culled", c.triangle_culled},
             {"triangle_ms", double(c.triangle_ns) * 1e-6},
             {"kdop_culled", c.kdop_culled},

@@ -125,7 +125,8 @@ PipelineStrategies strategies_from(const py::kwargs& options, const char* call) 
     } else if (key == "normal_cones") {
       s.normal_cones = value.cast<bool>();
     } else if (key == "end_boxes") {
-      s.end_boxes = value.cast<bool>();
+      s.end_boxes = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? EndBoxMode::on : EndBoxMode::off)
+                                                     : parse_end_box_mode(value.cast<std::string>());
     } else {
       fail("{}: unknown option '{}' (k, width, end_boxes, hierarchy, scheduler, threads, tester, narrow, representative, "
            "normal_cones)", call, key);

@@ -51,7 +51,10 @@ ExperimentConfig config_of(const Options& o) {
   if (!is_kdop_k(o.k)) fail("Options::k: expected one of {}, got {}", kKdopKs, o.k);
   if (!is_bvh_width(o.width)) fail("Options::width: expected {}, got {}", kBvhWidths, o.width);
   if (o.threads < 1 || o.threads > kMaxThreads) fail("Options::threads: expected 1 to {}, got {}", kMaxThreads, o.threads);
-  c.k = o.k, c.width = o.width, c.end_boxes = o.end_boxes, c.threads = o.threads, c.normal_cones = o.normal_cones;
+  c.k = o.k, c.width = o.width, c.threads = o.threads, c.normal_cones = o.normal_cones;
+  if (o.end_boxes != "on" && o.end_boxes != "off" && o.end_boxes != "auto")
+    fail("Options::end_boxes: expected on, off or auto, got '{}'", o.end_boxes);
+  c.end_boxes = parse_end_box_mode(o.end_boxes);
   c.hierarchy = parse_strategy_spec(o.hierarchy, "Options::hierarchy = ", "hierarchy", reg.builders, "median");
   c.scheduler = parse_strategy_spec(o.scheduler, "Options::scheduler = ", "scheduler", reg.schedulers, "sequential");
   c.tester = parse_strategy_spec(o.tester, "Options::tester = ", "tester", reg.testers, "float");
@@ -106,7 +109,7 @@ Options Options::from_yaml(std::string_view yaml, std::string_view source) {
     fail("{}:{}: {}", where, e.mark.line + 1, e.msg);
   }
   Options o;
-  o.k = c.k, o.width = c.width, o.end_boxes = c.end_boxes, o.threads = c.threads, o.normal_cones = c.normal_cones;
+  o.k = c.k, o.width = c.width, o.end_boxes = to_string(c.end_boxes), o.threads = c.threads, o.normal_cones = c.normal_cones;
   o.hierarchy = spec_of(c.hierarchy), o.scheduler = spec_of(c.scheduler), o.tester = spec_of(c.tester);
   o.narrow = c.narrow.mode == NarrowMode::scalar ? "scalar" : "batched";
   o.representative = c.narrow.representative == RepresentativeRule::first_free ? "first_free" : "fixed";

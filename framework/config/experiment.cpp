@@ -218,7 +218,12 @@ void read_strategy_section(const YamlReader& r, const YAML::Node& root, const Re
       c.width = int(r.integer(root["bv"]["width"], "bv.width", 2, 4));
       if (!is_bvh_width(c.width)) r.error(root["bv"]["width"], "bv.width", kBvhWidths);
     }
-    if (root["bv"]["end_boxes"]) c.end_boxes = r.boolean(root["bv"]["end_boxes"], "bv.end_boxes");
+    if (const YAML::Node e = root["bv"]["end_boxes"]) {
+      bool on = false;
+      if (e.IsScalar() && e.Scalar() == "auto") c.end_boxes = EndBoxMode::automatic;
+      else if (e.IsScalar() && YAML::convert<bool>::decode(e, on)) c.end_boxes = on ? EndBoxMode::on : EndBoxMode::off;
+      else r.error(e, "bv.end_boxes", "true, false or auto");
+    }
   }
   auto strategy = [&](const char* key, const auto& registry, const std::string& default_name) {
     return root[key] ? r.strategy(root[key], key, registry, default_name)
@@ -259,6 +264,11 @@ void read_strategy_section(const YamlReader& r, const YAML::Node& root, const Re
   }
 }
 
+nlohmann::json end_boxes_json(EndBoxMode mode) {
+  if (mode == EndBoxMode::automatic) return "auto";
+  return mode == EndBoxMode::on;
+}
+
 nlohmann::json to_json(const ExperimentConfig& c) {
   nlohmann::json j;
   j["name"] = c.name;
@@ -278,7 +288,7 @@ nlohmann::json to_json(const ExperimentConfig& c) {
       j["scene"] = {{"bodies", bodies}};
     }
   }
-  j["bv"] = {{"k", c.k}, {"width", c.width}, {"end_boxes", c.end_boxes}};
+  j["bv"] = {{"k", c.k}, {"width", c.width}, {"end_boxes", end_boxes_json(c.end_boxes)}};
   j["hierarchy"] = params_json(c.hierarchy);
   j["restructure"] = {{"threshold", c.restructure_threshold}};
   j["normal_cones"] = c.normal_cones;

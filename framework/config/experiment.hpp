@@ -56,7 +56,7 @@ struct ExperimentConfig {
   SceneConfig scene;
   int k = 18;
   int width = kDefaultBvhWidth;     ///< bv.width: 2 (binary BVTT) or 4 (framework/hierarchy/wide_bvh.hpp)
-  bool end_boxes = false;           ///< bv.end_boxes: also test nodes' boxes at both ends (framework/hierarchy/end_boxes.hpp)
+  EndBoxMode end_boxes = EndBoxMode::automatic;  ///< bv.end_boxes: also test nodes' boxes at both ends (framework/hierarchy/end_boxes.hpp)
   StrategyChoice hierarchy{"median", {}};
   StrategyChoice scheduler{"sequential", {}};
   int threads = 1;
@@ -79,6 +79,8 @@ ExperimentConfig load_experiment(const std::string& path, const std::vector<std:
 
 /// The fully resolved config (every default filled in) as JSON: what result files record.
 nlohmann::json to_json(const ExperimentConfig& config);
+/// bv.end_boxes as YAML reads it back: true, false or "auto".
+nlohmann::json end_boxes_json(EndBoxMode mode);
 /// JSON → YAML text (for config.yaml beside the results).
 std::string to_yaml(const nlohmann::json& j);
 

@@ -15,6 +15,7 @@ struct NarrowCounters {
   std::uint64_t candidates_gathered = 0;  ///< candidate face pairs whose feature pairs were gathered (after stage 0)
   std::uint64_t triangle_tested = 0;  ///< candidate face pairs stage 0 ran on (batched only, steps where it pays)
   std::uint64_t triangle_culled = 0;  ///< of which proven apart before their gather
+  std::uint64_t triangle_fine = 0;    ///< of the tested, those left for its second pass (axes 4–13, normals) by x, y, z
   std::uint64_t kdop_culled = 0;     ///< pairs whose swept feature 26-DOPs are disjoint (stage 1, every mode)
   std::uint64_t plane_culled = 0;    ///< pairs proven to stay off each other's plane/line (stage 2, batched only)
   std::uint64_t split_culled = 0;    ///< pairs proven apart on every half or sixteenth of the step (stage 3, batched only)
@@ -39,7 +40,7 @@ struct NarrowCounters {
   NarrowCounters& operator+=(const NarrowCounters& o) {
     vf_pairs += o.vf_pairs, ee_pairs += o.ee_pairs, orphan_vf += o.orphan_vf, orphan_ee += o.orphan_ee;
     orphans_culled += o.orphans_culled, orphans_carried += o.orphans_carried, candidates_gathered += o.candidates_gathered;
-    triangle_tested += o.triangle_tested, triangle_culled += o.triangle_culled, triangle_ns += o.triangle_ns;
+    triangle_tested += o.triangle_tested, triangle_culled += o.triangle_culled, triangle_fine += o.triangle_fine, triangle_ns += o.triangle_ns;
     kdop_culled += o.kdop_culled, plane_culled += o.plane_culled;
     split_culled += o.split_culled, split_ns += o.split_ns;
     proximity_culled += o.proximity_culled, proximity_ns += o.proximity_ns;

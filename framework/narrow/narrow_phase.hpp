@@ -61,7 +61,8 @@ class NarrowPhase {
   /// the caller for this step with the tester's thickness: the pipeline's swept volumes). All three must
   /// outlive the step.
   void begin_step(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& bounds);
-  /// The step's merged counters: stage 0's cull rate decides whether it runs in the next steps.
+  /// The step's merged counters: the work they count, with and without stage 0, decides whether it runs in the
+  /// next steps (and its cull rate whether the candidates carry the orphans).
   void end_step(const NarrowCounters& step);
 
   /// Appends the feature pairs the candidates represent to `scratch.batch`: in a step where stage 0 runs
@@ -84,6 +85,8 @@ class NarrowPhase {
   [[nodiscard]] EdgeEdgeQuery ee_query(Index a, Index b) const;
 
  private:
+  /// Whether stage 0 runs in this step (narrow_phase.cpp, StageNs), given that it can.
+  [[nodiscard]] bool triangle_stage_pays() const;
   /// Stage 1 (feature_bounds.hpp): the coarse 16-bit test on every pair first, the float one (the definition)
   /// on what stages 2–4 leave. Both count as stage 1.
   void cull_kdop(NarrowScratch& scratch, NarrowCounters& c, bool coarse) const;
@@ -108,7 +111,8 @@ class NarrowPhase {
   bool triangle_stage_ = false;       ///< stage 0 runs in this step (begin_step)
   FloatFrames float_frames_;          ///< what stage 0 reads, made in begin_step when it runs
   double triangle_cull_rate_ = 0;     ///< its cull rate in the last step that ran it
-  std::uint64_t triangle_candidates_ = 0;  ///< the candidates of that step
+  double work_with_ = -1;             ///< counted work per candidate of the last step with stage 0 (−1: none yet)
+  double work_without_ = -1;          ///< … and of the last step without it
   bool carry_orphans_ = false;        ///< the candidates carry the orphans in this step (begin_step)
   std::uint64_t last_candidates_ = 0;  ///< the candidates of the last step
   std::uint64_t steps_ = 0;

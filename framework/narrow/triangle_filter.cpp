@@ -256,20 +256,21 @@ HWY_INLINE V GapFactor(D d, const Corners<V>& c, float abs_reach, float rel_reac
 /// Two passes, so that the costly axes see only what the cheap ones leave (n-body 18%, the simulated cloth_ball
 /// 4%): x, y and z from the faces' boxes (a line a face, no arithmetic but the comparisons) on every candidate,
 /// then the other axes on the survivors, kBlock at a time, from their corners.
-void TriangleFilter(const std::int32_t* pairs, const std::int32_t* faces, const float* x01, const float* boxes,
-                    std::size_t n, float abs_reach, float rel_reach, float error, std::uint8_t* keep) {
+std::size_t TriangleFilter(const std::int32_t* pairs, const std::int32_t* faces, const float* x01, const float* boxes,
+                           std::size_t n, float abs_reach, float rel_reach, float error, std::uint8_t* keep) {
   const hn::ScalableTag<float> d;
   using V = hn::Vec<decltype(d)>;
   const std::size_t N = hn::Lanes(d);
   constexpr std::size_t kBlock = 64, kStride = kBlock + 16;  // + 16: a full vector past a short block's end
   HWY_ALIGN float block[kTriangleColumns * kStride];
   std::int32_t survivors[2 * 2 * kBlock];  // < kBlock left over + a block's; their pairs, and rows in `keep`
-  std::size_t survivor_row[2 * kBlock], count = 0;
+  std::size_t survivor_row[2 * kBlock], count = 0, fine = 0;
   const auto pad = [&](int columns, std::size_t m) {  // the last vector's lanes past m: zeros, never culled
     if (m % N != 0)
       for (int c = 0; c < columns; ++c) std::fill_n(block + kStride * std::size_t(c) + m, N - m % N, 0.0f);
   };
   const auto corners_pass = [&](std::size_t m) {  // axes 3.. on the first m survivors
+    fine += m;
     StageTriangles<kBlock>(survivors, faces, x01, m, block, kStride);
     pad(kTriangleColumns, m);
     for (std::size_t i = 0; i < m; i += N) {
@@ -315,6 +316,7 @@ void TriangleFilter(const std::int32_t* pairs, const std::int32_t* faces, const 
     }
   }
   if (count > 0) corners_pass(count);  // count < kBlock here
+  return fine;
 }
 
 }  // namespace HWY_NAMESPACE
@@ -338,13 +340,13 @@ float float_at_least(double x) {
 }
 }  // namespace
 
-void triangle_filter(std::span<const FacePair> candidates, const Face* faces, const FloatFrames& frames,
-                     CullReach reach, std::uint8_t* keep) {
+std::size_t triangle_filter(std::span<const FacePair> candidates, const Face* faces, const FloatFrames& frames,
+                            CullReach reach, std::uint8_t* keep) {
   static_assert(sizeof(FacePair) == 2 * sizeof(std::int32_t) && sizeof(Face) == 3 * sizeof(std::int32_t) &&
                     sizeof(FloatFramePoints) == 8 * sizeof(float) && sizeof(FloatFaceBoxes) == 16 * sizeof(float),
                 "TriangleFilter reads ids as packed int32 and coordinate j of point p in frame f at 8p + 4f + j");
-  if (candidates.empty()) return;
-  HWY_DYNAMIC_DISPATCH(TriangleFilter)(reinterpret_cast<const std::int32_t*>(candidates.data()),
+  if (candidates.empty()) return 0;
+  return HWY_DYNAMIC_DISPATCH(TriangleFilter)(reinterpret_cast<const std::int32_t*>(candidates.data()),
                                        reinterpret_cast<const std::int32_t*>(faces),
                                        reinterpret_cast<const float*>(frames.points.data()),
                                        reinterpret_cast<const float*>(frames.boxes.data()), candidates.size(),

@@ -49,9 +49,10 @@ namespace ccdlab {
 /// keep[i] = 0 when candidate i's triangles are proven to stay farther apart than the reach, 1 otherwise. SIMD
 /// (Highway, run-time dispatch, as plane_filter); the six corners of a block of candidates are staged in L1,
 /// eight at a time where 256-bit vectors exist (one load a corner, both frames), from the step's float frames;
-/// a vector stops at the first axis that culls all its lanes.
-void triangle_filter(std::span<const FacePair> candidates, const Face* faces, const FloatFrames& frames,
-                     CullReach reach, std::uint8_t* keep);
+/// a vector stops at the first axis that culls all its lanes. Returns how many candidates x, y and z (from the
+/// faces' boxes) left for the second pass, the costly one (NarrowPhase's stage-0 rule counts it).
+std::size_t triangle_filter(std::span<const FacePair> candidates, const Face* faces, const FloatFrames& frames,
+                            CullReach reach, std::uint8_t* keep);
 
 /// The same test for one candidate, plain C++: the reference every SIMD target is checked against.
 [[nodiscard]] bool triangle_pair_keeps(const Face& f, const Face& g, const FloatFrames& frames, CullReach reach);

@@ -69,7 +69,7 @@ void BodyHierarchy::build(const Positions& x_t0, const Positions& x_t1, const Hi
   trace.serial_ms += ms_since(t0);
 }
 
-void BodyHierarchy::refit(const FeatureBounds& swept_dops, double end_reach, PhaseTrace& trace) {
+void BodyHierarchy::refit(const FeatureBounds& swept_dops, std::optional<double> end_reach, PhaseTrace& trace) {
   const BvhTopology& bvh = bvh_;
   std::visit(
       [&](auto& node_bvs) {
@@ -78,10 +78,10 @@ void BodyHierarchy::refit(const FeatureBounds& swept_dops, double end_reach, Pha
         // The leaves first, in node order: their faces and vertex 26-DOPs are scattered reads, which the CPU
         // overlaps across independent iterations (a fused bottom-up sweep measured slower: docs/pipeline.md, §2).
         const SweptFaceBv<BV> swept{mesh_, swept_dops};
-        const bool ends = settings_.end_boxes;
+        const bool ends = settings_.end_boxes && end_reach;
         if (ends) node_ends_.resize(bvh.nodes.size());
         const FramePoints* points = swept_dops.frame_points();
-        const double r = end_reach / 2;
+        const double r = end_reach.value_or(0) / 2;
         parallel_chunks(bvh.nodes.size(), 2 * kFaceChunk, settings_.threads, trace, [&](std::size_t b, std::size_t e, int) {
           for (std::size_t i = b; i < e; ++i)
             if (bvh.nodes[i].is_leaf()) {
@@ -108,8 +108,7 @@ void BodyHierarchy::refit(const FeatureBounds& swept_dops, double end_reach, Pha
 }
 
 std::uint64_t BodyHierarchy::restructure(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& swept_dops,
-                                         double end_reach,
-                                         const HierarchyBuilder& builder, PhaseTrace& trace) {
+                                         std::optional<double> end_reach, const HierarchyBuilder& builder, PhaseTrace& trace) {
   std::uint64_t rebuilt = 0;
   std::visit(
       [&](auto& node_bvs) {
@@ -141,8 +140,8 @@ std::uint64_t BodyHierarchy::restructure(const Positions& x_t0, const Positions&
           // Its leaves now hold other faces: their swept volumes are computed again.
           refit_subtree(bvh_, node_bvs, r, SweptFaceBv<BV>{mesh_, swept_dops});
           for (Index p = bvh_.nodes[r].parent; p >= 0; p = bvh_.nodes[p].parent) refit_node(bvh_, node_bvs, p, LeavesInPlace{});
-          if (settings_.end_boxes) {
-            refit_subtree(bvh_, node_ends_, r, [&](Index f) { return face_end_boxes(swept_dops.frame_points(), mesh_.face(f), end_reach / 2); });
+          if (settings_.end_boxes && end_reach) {
+            refit_subtree(bvh_, node_ends_, r, [&](Index f) { return face_end_boxes(swept_dops.frame_points(), mesh_.face(f), *end_reach / 2); });
             for (Index p = bvh_.nodes[r].parent; p >= 0; p = bvh_.nodes[p].parent) refit_node(bvh_, node_ends_, p, LeavesInPlace{});
           }
           quality_ref_[u] = subtree_quality(bvh_, node_bvs, r);
@@ -164,16 +163,17 @@ void BodyHierarchy::follow_topology() {
   followed_version_ = bvh_.version;
 }
 
-void BodyHierarchy::refit_wide(PhaseTrace& trace) {
+void BodyHierarchy::refit_wide(bool ends, PhaseTrace& trace) {
   const WideLayout& layout = wide_layout_;
   const bool copy_lanes = wide_lanes_stale_;
+  ends = ends && settings_.end_boxes;
   std::visit(
       [&](auto& node_wide) {
         using Bounds = typename std::decay_t<decltype(node_wide)>::value_type;
         using Vec = BvArray<typename Bounds::Volume>;
         const Vec& bvs = std::get<Vec>(node_bvs_);
         node_wide.resize(layout.lanes.size());
-        if (settings_.end_boxes) wide_ends_.resize(layout.lanes.size());
+        if (ends) wide_ends_.resize(layout.lanes.size());
         parallel_chunks(layout.lanes.size(), 4096, settings_.threads, trace, [&](std::size_t b, std::size_t e, int) {
           for (std::size_t w = b; w < e; ++w) {
             // The lanes are scattered over the binary array: ask for the next nodes' early (memory-bound loop).
@@ -181,11 +181,11 @@ void BodyHierarchy::refit_wide(PhaseTrace& trace) {
               for (Index c : layout.lanes[w + 8].node)
                 if (c >= 0) {
                   __builtin_prefetch(&bvs[c]);
-                  if (settings_.end_boxes) __builtin_prefetch(&node_ends_[c]);
+                  if (ends) __builtin_prefetch(&node_ends_[c]);
                 }
             if (copy_lanes) node_wide[w].lanes = layout.lanes[w];  // the LaneIds: fixed until the topology changes
             refit_wide_bounds(layout, bvs, Index(w), node_wide[w]);
-            if (settings_.end_boxes) refit_wide_ends(layout, node_ends_, Index(w), wide_ends_[w]);
+            if (ends) refit_wide_ends(layout, node_ends_, Index(w), wide_ends_[w]);
           }
         });
       },

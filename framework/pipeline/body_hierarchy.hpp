@@ -12,6 +12,7 @@
 // The traversal reads bvh(), node_bvs(), wide_layout(), node_wide() and skip_root() through pointers that stay
 // valid for the hierarchy's lifetime.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "framework/hierarchy/bvh.hpp"
@@ -36,18 +37,19 @@ class BodyHierarchy {
 
   /// Top-down build over the faces' boxes swept over the step; a new topology.
   void build(const Positions& x_t0, const Positions& x_t1, const HierarchyBuilder& builder, PhaseTrace& trace);
-  /// Every leaf's swept k-DOP (from `swept`), then every inner node's, bottom-up (refit plan); with end boxes on,
-  /// their EndBoxes too, inflated by end_reach / 2 (CcdPipeline::end_reach).
-  void refit(const FeatureBounds& swept, double end_reach, PhaseTrace& trace);
-  /// Rebuilds the degraded sub-trees; returns how many were rebuilt.
-  std::uint64_t restructure(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& swept, double end_reach,
-                            const HierarchyBuilder& builder, PhaseTrace& trace);
+  /// Every leaf's swept k-DOP (from `swept`), then every inner node's, bottom-up (refit plan); with an end reach
+  /// (end boxes kept and tested this step), their EndBoxes too, inflated by end_reach / 2 (CcdPipeline::end_reach).
+  void refit(const FeatureBounds& swept, std::optional<double> end_reach, PhaseTrace& trace);
+  /// Rebuilds the degraded sub-trees (and, with an end reach, their end boxes); returns how many were rebuilt.
+  std::uint64_t restructure(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& swept,
+                            std::optional<double> end_reach, const HierarchyBuilder& builder, PhaseTrace& trace);
   /// Whether the topology changed since follow_topology last ran (then call it before refit_wide and update_cones).
   [[nodiscard]] bool topology_changed() const { return followed_version_ != bvh_.version; }
   /// Cuts the 4-wide layout (width 4) and the normal-cone patches (when on) from the current topology.
   void follow_topology();
   /// Every wide record's bounds from the binary volumes (and their lanes, after follow_topology cut them again).
-  void refit_wide(PhaseTrace& trace);
+  /// `ends`: also the records' WideEnds, from the nodes' end boxes (refit with an end reach this step).
+  void refit_wide(bool ends, PhaseTrace& trace);
   /// This step's normal-cone culling (skip_root); returns the number of topmost skipped nodes.
   std::uint64_t update_cones(const Positions& x_t0, const Positions& x_t1, PhaseTrace& trace);
   /// Writes, for each of the body's faces, the skipped patch (BVH node) holding it this step, or −1.

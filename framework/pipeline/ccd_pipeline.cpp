@@ -1,6 +1,7 @@
 #include "framework/pipeline/ccd_pipeline.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "framework/pipeline/phase_clock.hpp"
 #include "framework/pipeline/schedule_sim.hpp"
@@ -8,6 +9,22 @@
 #include "framework/util/memory.hpp"
 
 namespace ccdlab {
+namespace {
+
+/// bv.end_boxes: auto (CcdPipeline::end_boxes_pay). End boxes cost every step a pass over the nodes (their refit
+/// beside the k-DOPs) and 12 more compares per node pair the walk opens; they save the node pairs and the
+/// candidates they drop. They run in a step when the last step run with them kept at most kEndsKeepAtMost of
+/// the candidates of the last step run without them, and dropped at least kEndsDropPerFace candidates per face
+/// (docs/wide-bvh.md, "End boxes": n-body keeps 0.18 and drops 26 a face, cloth_ball 0.04 and 19: they pay;
+/// rod-twist keeps 0.84 and drops 1.4, the funnel 0.81 and 0.1: they cost). Both counts are measured again every
+/// kEndsRemeasure steps, one step without (step 0 mod 16), then one with (1 mod 16) when the step without had
+/// enough candidates to drop. Whole-step candidate counts are the same for every scheduler, width, thread count
+/// and slicing, so every schedule decides alike and reports the same counters.
+constexpr double kEndsKeepAtMost = 0.5;
+constexpr double kEndsDropPerFace = 4;
+constexpr std::uint64_t kEndsRemeasure = 16;
+
+}  // namespace
 
 void PipelineStrategies::validate() const {
   if (!is_kdop_k(k)) fail("bv.k: expected one of {}, got {}", kKdopKs, k);
@@ -20,6 +37,17 @@ void PipelineStrategies::validate() const {
   if (!builder || !scheduler || !tester) fail("pipeline: a hierarchy builder, a scheduler and a tester are required");
   if (normal_cones && tester->thickness() > 0)
     fail("normal_cones: culling is exact only for contact at zero distance; got tester thickness {}", tester->thickness());
+}
+
+std::string_view to_string(EndBoxMode m) {
+  return m == EndBoxMode::on ? "on" : m == EndBoxMode::off ? "off" : "auto";
+}
+
+EndBoxMode parse_end_box_mode(std::string_view name) {
+  if (name == "true" || name == "on") return EndBoxMode::on;
+  if (name == "false" || name == "off") return EndBoxMode::off;
+  if (name == "auto") return EndBoxMode::automatic;
+  fail("bv.end_boxes: expected true, false or auto, got '{}'", name);
 }
 
 std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std::size_t orphan_pairs, bool end_boxes) {
@@ -69,7 +97,7 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
   if (const std::uint64_t limit = strategies_.memory_limit; limit > 0) {
     const std::uint64_t resident = current_rss_bytes(),
                         need = estimate_pipeline_bytes(mesh_, strategies_.k, strategies_.width, orphans().vf.size() + orphans().ee.size(),
-                                                       end_boxes_on());
+                                                       end_boxes_kept());
     if (resident + need > limit)
       fail("memory_limit {}: this run needs about {} before its first step ({} resident now with the scene, {} more "
            "for the BVH, feature boxes and orphan set of {} triangles); lower the scene's size or raise memory_limit",
@@ -77,7 +105,7 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
            mesh_.num_faces());
   }
   const BodyHierarchy::Settings settings{strategies_.k, strategies_.width, strategies_.threads,
-                                         strategies_.restructure_threshold, strategies_.normal_cones, end_boxes_on()};
+                                         strategies_.restructure_threshold, strategies_.normal_cones, end_boxes_kept()};
   const auto& bl = rules_.bodies();
   bodies_.reserve(bl.size());  // the passes point into the bodies: no reallocation after this
   for (std::size_t b = 0; b < bl.size(); ++b) {
@@ -99,7 +127,7 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
       pass.wide_layout_b = &b.wide_layout();
       pass.wide_b = &b.node_wide();
     }
-    if (end_boxes_on()) {
+    if (end_boxes_kept()) {
       pass.ends_a = &a.node_ends(), pass.ends_b = &b.node_ends();
       if (strategies_.width == 4) pass.wide_ends_a = &a.wide_ends(), pass.wide_ends_b = &b.wide_ends();
     }
@@ -114,7 +142,24 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
 
 CcdPipeline::~CcdPipeline() = default;
 
-bool CcdPipeline::end_boxes_on() const { return strategies_.end_boxes && strategies_.tester->cull_reach().has_value(); }
+bool CcdPipeline::end_boxes_kept() const {
+  return strategies_.end_boxes != EndBoxMode::off && strategies_.tester->cull_reach().has_value();
+}
+
+bool CcdPipeline::end_boxes_pay() const {
+  if (!end_boxes_kept()) return false;
+  if (strategies_.end_boxes == EndBoxMode::on) return true;
+  const double faces = double(mesh_.num_faces());
+  const bool may_pay = double(candidates_without_ends_) >= kEndsDropPerFace * faces;
+  switch (steps_ % kEndsRemeasure) {
+    case 0: return false;     // measures the candidates without
+    case 1: return may_pay;  // measures them with
+    default:
+      return may_pay && double(candidates_with_ends_) <= kEndsKeepAtMost * double(candidates_without_ends_) &&
+             double(candidates_without_ends_ - std::min(candidates_with_ends_, candidates_without_ends_)) >=
+                 kEndsDropPerFace * faces;
+  }
+}
 
 double CcdPipeline::end_reach() const {
   const CullReach reach = *strategies_.tester->cull_reach();
@@ -145,7 +190,8 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   narrow_.begin_step(x_t0, x_t1, swept_);
 
   // 2. Body hierarchies: refit, restructure, then what hangs on the topology.
-  const double end_reach = end_boxes_on() ? this->end_reach() : 0;
+  ends_in_step_ = end_boxes_pay();
+  const std::optional<double> end_reach = ends_in_step_ ? std::optional(this->end_reach()) : std::nullopt;
   for (BodyHierarchy& body : bodies_)
     clock.parallel("refit", &tm.refit_ms, [&](PhaseTrace& t) { body.refit(swept_, end_reach, t); });
   if (strategies_.restructure_threshold > 0)
@@ -155,7 +201,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   for (BodyHierarchy& body : bodies_)
     if (body.topology_changed()) clock.serial("build", &tm.build_ms, [&] { body.follow_topology(); });
   if (strategies_.width == 4)
-    for (BodyHierarchy& body : bodies_) clock.parallel("refit_wide", &tm.refit_ms, [&](PhaseTrace& t) { body.refit_wide(t); });
+    for (BodyHierarchy& body : bodies_) clock.parallel("refit_wide", &tm.refit_ms, [&](PhaseTrace& t) { body.refit_wide(ends_in_step_, t); });
   if (strategies_.normal_cones)
     clock.parallel("normal_cones", &tm.cones_ms, [&](PhaseTrace& t) {
       face_patch_.assign(mesh_.num_faces(), -1);
@@ -167,9 +213,12 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
     });
 
   // 3–4. Traversal, its candidates into the narrow phase as they are found; then the orphan set.
+  traversal_.test_end_boxes(ends_in_step_);
   traversal_.run(std::size_t(mesh_.num_faces()), narrow_driver_, result);
   narrow_driver_.test_orphans(strategies_.normal_cones ? &face_patch_ : nullptr, result);
   narrow_.end_step(result.counters);
+  (ends_in_step_ ? candidates_with_ends_ : candidates_without_ends_) = result.counters.candidate_pairs;
+  ++steps_;
 
   // 5. One order, whatever the schedule.
   clock.serial("sort_contacts", nullptr, [&] { sort_contacts(result.contacts, sort_scratch_); });

@@ -9,6 +9,7 @@
 // Only the passes the bodies ask for run: no self pass without self-collision, no pair pass without a
 // second body. Every phase is timed once (phase_clock.hpp).
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include "framework/narrow/narrow_phase.hpp"
@@ -24,6 +25,13 @@
 
 namespace ccdlab {
 
+/// bv.end_boxes (framework/hierarchy/end_boxes.hpp): test the nodes' boxes at both ends of the step in every
+/// step (`on`), never (`off`), or in the steps where they pay (`automatic`, YAML `auto`: CcdPipeline's rule).
+enum class EndBoxMode { off, on, automatic };
+[[nodiscard]] std::string_view to_string(EndBoxMode m);
+/// true / on, false / off, or auto; throws Error naming the field otherwise.
+[[nodiscard]] EndBoxMode parse_end_box_mode(std::string_view name);
+
 struct PipelineStrategies {
   int k = 18;  ///< k-DOP: 6, 14, 18 or 26
   int width = kDefaultBvhWidth;  ///< BVH width the traversal reads: 2 (binary) or 4 (framework/hierarchy/wide_bvh.hpp)
@@ -38,7 +46,7 @@ struct PipelineStrategies {
   bool normal_cones = false;
   /// End boxes (framework/hierarchy/end_boxes.hpp): the traversal also drops node pairs apart on x, y or z at both
   /// ends of the step. Needs the tester's reach (PrimitiveTester::cull_reach); off for a tester without one.
-  bool end_boxes = false;
+  EndBoxMode end_boxes = EndBoxMode::automatic;
   /// Bytes the process may hold resident during a step (0 = no limit): above the predicted need, a step streams
   /// its candidates to the narrow phase slice by slice (framework/pipeline/memory_budget.hpp).
   std::uint64_t memory_limit = 0;
@@ -95,11 +103,15 @@ class CcdPipeline {
   /// Bytes of the pipeline's persistent data (topology, ownership, orphans, BVHs).
   [[nodiscard]] std::size_t memory_bytes() const;
 
-  /// Whether the traversal tests end boxes (framework/hierarchy/end_boxes.hpp): asked for, and the tester has a
-  /// reach.
-  [[nodiscard]] bool end_boxes_on() const;
+  /// Whether the hierarchies keep end boxes (framework/hierarchy/end_boxes.hpp): bv.end_boxes is not off, and
+  /// the tester has a reach.
+  [[nodiscard]] bool end_boxes_kept() const;
+  /// Whether the last step's traversal tested them (always when `on` and kept; by the rule when `automatic`).
+  [[nodiscard]] bool end_boxes_in_last_step() const { return ends_in_step_; }
 
  private:
+  /// Whether this step tests end boxes: bv.end_boxes, and for `automatic` the rule from the last steps' counts.
+  [[nodiscard]] bool end_boxes_pay() const;
   /// The distance beyond which the tester reports no pair, for every pair of this step (its reach at the scene's
   /// size): end boxes are inflated by half of it.
   [[nodiscard]] double end_reach() const;
@@ -115,6 +127,12 @@ class CcdPipeline {
   NarrowDriver narrow_driver_;
   ContactSortScratch sort_scratch_;  ///< sort_contacts' buffers, kept across steps
   bool built_ = false;
+  // The end boxes' rule (end_boxes_pay): steps run, the candidates of the last step run without them and of the
+  // last run with them, and whether this (or the last) step tests them.
+  std::uint64_t steps_ = 0;
+  std::uint64_t candidates_without_ends_ = 0;
+  std::uint64_t candidates_with_ends_ = 0;
+  bool ends_in_step_ = false;
 };
 
 /// Bytes a pipeline over `mesh` will add before its first traversal: the BVHs and their volumes (the leaves' are

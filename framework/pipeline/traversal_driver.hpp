@@ -22,6 +22,10 @@ class TraversalDriver {
 
   void add_pass(const TraversalPass& pass) { passes_.push_back(pass); }
   [[nodiscard]] const std::vector<TraversalPass>& passes() const { return passes_; }
+  /// Whether the next runs test the passes' end boxes (TraversalPass::test_ends).
+  void test_end_boxes(bool on) {
+    for (TraversalPass& pass : passes_) pass.test_ends = on;
+  }
 
   /// Traverses every pass over a mesh of `faces` triangles and tests its candidates with `narrow`: timings
   /// traverse_ms and narrow_ms, the traversal's counters and the memory plan go to `result`.

@@ -41,11 +41,13 @@ struct TraversalPass {
   const WideLayout* wide_layout_b = nullptr;
   const AnyWideBvs* wide_b = nullptr;
   /// End boxes (framework/hierarchy/end_boxes.hpp) of both hierarchies' nodes, and of the wide records' lanes
-  /// (width 4), or nullptr when the pipeline does not test them.
+  /// (width 4), or nullptr when the pipeline keeps none; the walks test them in the steps that set `test_ends`
+  /// (the pipeline refits them in those steps only).
   const BvArray<EndBoxes>* ends_a = nullptr;
   const BvArray<EndBoxes>* ends_b = nullptr;
   const WideEndsArray* wide_ends_a = nullptr;
   const WideEndsArray* wide_ends_b = nullptr;
+  bool test_ends = false;
   /// Where the traversal starts: the BVTT root, or one slice of it when a memory-bounded step streams its
   /// candidates to the narrow phase slice by slice (CcdPipeline; a slice has a negative `id`, released after it).
   BvttNode root{0, 0};
@@ -60,14 +62,15 @@ void with_bvtt_view(const TraversalPass& pass, F&& f) {
         const auto& bvs_b = std::get<BvArray<BV>>(*pass.bvs_b);
         const Index* skip = pass.skip_root && !pass.skip_root->empty() ? pass.skip_root->data() : nullptr;
         BvttView<BV> view{pass.bvh_a, &bvs_a, pass.bvh_b, &bvs_b, pass.mesh, pass.self, skip};
-        if (pass.ends_a && pass.ends_b) view.ends_a = pass.ends_a->data(), view.ends_b = pass.ends_b->data();
+        const bool ends = pass.test_ends && pass.ends_a && pass.ends_b;
+        if (ends) view.ends_a = pass.ends_a->data(), view.ends_b = pass.ends_b->data();
         if (pass.wide_a && pass.wide_b) {
           view.wide_layout_a = pass.wide_layout_a;
           view.wide_a = &std::get<WideBvs<BV>>(*pass.wide_a);
           view.wide_layout_b = pass.wide_layout_b;
           view.wide_b = &std::get<WideBvs<BV>>(*pass.wide_b);
           view.lane_pairs = lane_pair_walk();
-          if (pass.wide_ends_a && pass.wide_ends_b)
+          if (ends && pass.wide_ends_a && pass.wide_ends_b)
             view.wide_ends_a = pass.wide_ends_a->data(), view.wide_ends_b = pass.wide_ends_b->data();
         }
         f(view);

@@ -119,9 +119,9 @@ TEST(Schedulers, EndBoxesGiveEverySchedulerWidthAndThreadCountTheSameCandidates)
   // the task splits of phc and static, the binary and wide fronts, the SSE2 and lane-pair walks — but never the
   // leaf pairs they reach together, nor the contacts.
   const MeshSequence scene = small_scene();
-  const RunResult without = run(scene, make("sequential", {}, 1));
-  PipelineStrategies on = make("sequential", {}, 1);
-  on.end_boxes = true;
+  PipelineStrategies off = make("sequential", {}, 1), on = make("sequential", {}, 1);
+  off.end_boxes = EndBoxMode::off, on.end_boxes = EndBoxMode::on;
+  const RunResult without = run(scene, std::move(off));
   const RunResult reference = run(scene, std::move(on));
   EXPECT_EQ(reference.hashes, without.hashes);
   std::size_t kept = 0, all = 0;
@@ -136,7 +136,7 @@ TEST(Schedulers, EndBoxesGiveEverySchedulerWidthAndThreadCountTheSameCandidates)
       for (int threads : {1, 3}) {
         SCOPED_TRACE(std::string(scheduler) + " width " + std::to_string(width) + " x" + std::to_string(threads));
         PipelineStrategies s = make(scheduler, {}, threads);
-        s.width = width, s.end_boxes = true;
+        s.width = width, s.end_boxes = EndBoxMode::on;
         const RunResult r = run(scene, std::move(s));
         EXPECT_EQ(r.candidates, reference.candidates);
         EXPECT_EQ(r.hashes, reference.hashes);
@@ -288,14 +288,14 @@ TEST(AdaptiveRestructuring, RebuildsDegradedSubtreesWithoutChangingAnswers) {
   // With end boxes, the rebuilt sub-trees' boxes are made again too (BodyHierarchy::restructure).
   for (const bool end_boxes : {false, true}) {
     PipelineStrategies base = make("sequential", {}, 1);
-    base.end_boxes = end_boxes;
+    base.end_boxes = end_boxes ? EndBoxMode::on : EndBoxMode::off;
     const RunResult reference = run(scene, std::move(base));
     for (const std::string scheduler : {"sequential", "front", "phc"})
       for (int threads : {1, 3}) {
         SCOPED_TRACE(scheduler + " x" + std::to_string(threads) + (end_boxes ? " end boxes" : ""));
         PipelineStrategies s = make(scheduler, {}, threads);
         s.restructure_threshold = 1.01;  // aggressive: rebuild at the slightest degradation
-        s.end_boxes = end_boxes;
+        s.end_boxes = end_boxes ? EndBoxMode::on : EndBoxMode::off;
         CcdPipeline p(scene.topology(), scene.bodies(), std::move(s));
         p.keep_candidates(true);
         std::uint64_t restructured = 0, version_before = 0;

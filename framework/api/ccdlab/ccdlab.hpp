@@ -42,7 +42,7 @@ MeshFile read_mesh(const std::filesystem::path& path);
 struct Options {
   int k = 18;                            ///< bv.k: the k-DOP, 6 / 14 / 18 / 26
   int width = 4;                         ///< bv.width: 2 (binary BVTT) or 4 (wide, SIMD)
-  bool end_boxes = false;                ///< bv.end_boxes: also drop node pairs apart on x, y or z at both ends
+  std::string end_boxes = "auto";        ///< bv.end_boxes: also drop node pairs apart on x, y or z at both ends: on, off, or auto (where they pay)
   std::string hierarchy = "median";      ///< the BVH builder
   std::string scheduler = "sequential";  ///< sequential, phc, front, static (or embree)
   int threads = 1;

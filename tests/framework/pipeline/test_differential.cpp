@@ -61,7 +61,7 @@ AnyBvs swept_face_bvs(const CcdPipeline& pipeline, const Positions& x0, const Po
 FacePairs reference_candidates(const CcdPipeline& pipeline, const Positions& x0, const Positions& x1) {
   const PrimitiveTester& tester = *pipeline.strategies().tester;
   std::vector<EndBoxes> ends;
-  if (pipeline.end_boxes_on()) ends = compute_face_end_boxes(pipeline.mesh(), x0, x1, tester.thickness(), *tester.cull_reach());
+  if (pipeline.end_boxes_in_last_step()) ends = compute_face_end_boxes(pipeline.mesh(), x0, x1, tester.thickness(), *tester.cull_reach());
   return brute_force_candidates(pipeline.mesh(), pipeline.rules(), swept_face_bvs(pipeline, x0, x1), ends);
 }
 
@@ -140,10 +140,10 @@ TEST_P(Differential, EndBoxesDropOnlyPairsApartAtBothEndsAndNoContact) {
   MeshData g = test::grid(9, 7);
   TriMesh mesh(Index(g.positions.size()), g.faces);
   PipelineStrategies on = strategies(GetParam()), off = strategies(GetParam());
-  on.end_boxes = true, off.end_boxes = false;
+  on.end_boxes = EndBoxMode::on, off.end_boxes = EndBoxMode::off;
   CcdPipeline with(mesh, single_cloth_body(mesh), std::move(on)), without(mesh, single_cloth_body(mesh), std::move(off));
-  ASSERT_TRUE(with.end_boxes_on());
-  ASSERT_FALSE(without.end_boxes_on());
+  ASSERT_TRUE(with.end_boxes_kept());
+  ASSERT_FALSE(without.end_boxes_kept());
   with.keep_candidates(true), without.keep_candidates(true);
   for (unsigned seed = 1; seed <= 4; ++seed) {
     Frames f = random_step(g.positions, seed, 0.05);
