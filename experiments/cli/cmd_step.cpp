@@ -35,6 +35,8 @@ int step_command(const StepOptions& o) {
   PipelineStrategies s;
   s.k = o.k;
   s.width = o.width;
+  if (o.end_boxes != "on" && o.end_boxes != "off" && o.end_boxes != "auto")
+    fail("--end-boxes: expected on, off or auto, got '{}'", o.end_boxes);
   s.end_boxes = parse_end_box_mode(o.end_boxes);
   s.threads = o.threads;
   s.memory_limit = parse_memory_size(o.memory_limit, "--memory-limit");

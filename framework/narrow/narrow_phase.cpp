@@ -16,16 +16,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Stage 0 runs in a step when the narrow phase's work per candidate was smaller in the last step that ran it than
-/// in the last step that did not (docs/narrow-phase.md, "Stage 0 by the work it saves"). The work is counted, not
-/// timed: the pairs each stage received times that stage's ns per pair on the AVX-512 machine (the ratios are
-/// what matter, and they hold on AVX2 within ~1.5×). Counts of whole steps keep every work counter independent
-/// of how the candidates are cut into chunks (schedulers, threads, slices). What a culled candidate saves varies
-/// 4× between real steps at the same cull rate: its feature pairs die in stage 1 on rod-twist, but reach the
-/// costly stage 3 on n-body once end boxes have dropped the easy candidates — hence no fixed cull-rate threshold.
-/// Stage 0 runs until a step without it has been measured, then every kTriangleRemeasure steps one step with it
-/// (2 mod 16) and one without (3 mod 16), after the end boxes' measuring steps (0 and 1 mod 16, CcdPipeline), so
-/// that both see the same kind of candidates.
+/// What each stage costs a pair it receives, in ns on the 2-core AVX-512 machine (docs/narrow-phase.md, the
+/// stage tables: the ratios are what matter, and they hold on AVX2 within ~1.5×).
 struct StageNs {
   static constexpr double gather = 5;       ///< per candidate gathered
   static constexpr double frames = 4;       ///< stage 0's float frames and face boxes, per face
@@ -34,23 +26,7 @@ struct StageNs {
   static constexpr double kdop = 3, plane = 10, split = 25, proximity = 50;  ///< stages 1–4, per pair received
   static constexpr double test = 150;       ///< per elementary test
 };
-constexpr std::uint64_t kTriangleRemeasure = 16;
 
-/// The narrow phase's counted work in a step (StageNs), per candidate the traversal found; 0 without candidates.
-double work_per_candidate(const NarrowCounters& c, std::size_t faces) {
-  const std::uint64_t candidates = c.candidates_gathered + c.triangle_culled;
-  if (candidates == 0) return 0;
-  const auto less = [](std::uint64_t a, std::uint64_t b) { return a - std::min(a, b); };
-  const std::uint64_t s1 = c.vf_pairs + c.ee_pairs, s2 = less(s1, c.kdop_culled), s3 = less(s2, c.plane_culled),
-                      s4 = less(s3, c.split_culled);
-  const double stage0 = c.triangle_tested > 0 ? StageNs::frames * double(faces) + StageNs::box_pass * double(c.triangle_tested) +
-                                                    StageNs::fine_pass * double(c.triangle_fine)
-                                              : 0.0;
-  const double work = stage0 + StageNs::gather * double(c.candidates_gathered) + StageNs::kdop * double(s1) +
-                      StageNs::plane * double(s2) + StageNs::split * double(s3) + StageNs::proximity * double(s4) +
-                      StageNs::test * double(c.vf_tests + c.ee_tests);
-  return work / double(candidates);
-}
 /// The candidates carry the orphans (Representatives::append_pairs) in a step expected to gather at most this
 /// many candidates per orphan: the last step's candidates, less the share stage 0 culled when it last ran if it
 /// runs in this one. A gathered candidate then checks two signatures, now and then reads a list, and brings the
@@ -119,7 +95,7 @@ void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const
   x_t0_ = &x_t0;
   x_t1_ = &x_t1;
   bounds_ = &bounds;
-  triangle_stage_ = options_.mode == NarrowMode::batched && tester_.cull_reach() && triangle_stage_pays();
+  triangle_stage_ = options_.mode == NarrowMode::batched && tester_.cull_reach() && triangle_rule_.runs(steps_);
   if (triangle_stage_) float_frames_.update(x_t0.data(), x_t1.data(), x_t0.size(), mesh_.faces());
   const OrphanSet& orphans = reps_.orphans();
   switch (options_.carry_orphans) {
@@ -132,18 +108,37 @@ void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const
   }
 }
 
-bool NarrowPhase::triangle_stage_pays() const {
-  const std::uint64_t phase = steps_ % kTriangleRemeasure;
-  if (phase == 3) return false;          // measures the work without it
-  if (work_without_ < 0) return true;    // until that has been measured
-  if (phase == 2) return true;           // measures the work with it
+double counted_work_per_candidate(const NarrowCounters& c, std::size_t faces) {
+  const std::uint64_t candidates = c.candidates_gathered + c.triangle_culled;
+  if (candidates == 0) return 0;
+  const auto less = [](std::uint64_t a, std::uint64_t b) { return a - std::min(a, b); };
+  const std::uint64_t s1 = c.vf_pairs + c.ee_pairs, s2 = less(s1, c.kdop_culled), s3 = less(s2, c.plane_culled),
+                      s4 = less(s3, c.split_culled);
+  const double stage0 = c.triangle_tested == 0 ? 0.0
+                                               : StageNs::frames * double(faces) + StageNs::box_pass * double(c.triangle_tested) +
+                                                     StageNs::fine_pass * double(c.triangle_fine);
+  const double work = stage0 + StageNs::gather * double(c.candidates_gathered) + StageNs::kdop * double(s1) +
+                      StageNs::plane * double(s2) + StageNs::split * double(s3) + StageNs::proximity * double(s4) +
+                      StageNs::test * double(c.vf_tests + c.ee_tests);
+  return work / double(candidates);
+}
+
+bool TriangleStageRule::runs(std::uint64_t step) const {
+  const std::uint64_t phase = step % kRemeasure;
+  if (phase == 3) return false;        // measures the work without it
+  if (work_without_ < 0) return true;  // until that has been measured
+  if (phase == 2) return true;         // measures the work with it
   return work_with_ < work_without_;
+}
+
+void TriangleStageRule::record(bool ran, const NarrowCounters& step, std::size_t faces) {
+  if (step.candidates_gathered + step.triangle_culled > 0)
+    (ran ? work_with_ : work_without_) = counted_work_per_candidate(step, faces);
 }
 
 void NarrowPhase::end_step(const NarrowCounters& step) {
   if (step.triangle_tested > 0) triangle_cull_rate_ = double(step.triangle_culled) / double(step.triangle_tested);
-  if (options_.mode == NarrowMode::batched && step.candidates_gathered + step.triangle_culled > 0)
-    (triangle_stage_ ? work_with_ : work_without_) = work_per_candidate(step, mesh_.faces().size());
+  if (options_.mode == NarrowMode::batched) triangle_rule_.record(triangle_stage_, step, mesh_.faces().size());
   last_candidates_ = step.candidates_gathered + step.triangle_culled;
   ++steps_;
 }

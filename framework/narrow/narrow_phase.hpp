@@ -36,6 +36,33 @@ enum class NarrowMode { scalar, batched };
 /// pays (batched mode; the rule is in narrow_phase.cpp), or in every step, or never (tests compare the three).
 enum class OrphanCarry { when_it_pays, always, never };
 
+/// Whether stage 0 (triangle_filter.hpp) runs in a step: when the narrow phase's counted work per candidate was
+/// smaller in the last step that ran it than in the last step that did not (docs/narrow-phase.md, "Stage 0 by
+/// the work it saves"). Counted, not timed, and from whole steps, so that every schedule decides alike and every
+/// work counter is independent of how the candidates are cut into chunks (schedulers, threads, slices). What a
+/// culled candidate saves varies 4× between real steps at the same cull rate — its feature pairs die in stage 1
+/// on rod-twist, but reach the costly stage 3 on n-body once end boxes have dropped the easy candidates — so no
+/// fixed cull rate decides. Stage 0 runs until a step without it has been measured (step 3), then, every
+/// kRemeasure steps, one step with it (2 mod 16) and one without (3 mod 16): after the end boxes' measuring
+/// steps (0 and 1 mod 16, CcdPipeline), so that both see candidates of the same kind.
+class TriangleStageRule {
+ public:
+  static constexpr std::uint64_t kRemeasure = 16;
+  /// Whether stage 0 runs in step `step` (0 = a pipeline's first), given that it can (batched, a tester reach).
+  [[nodiscard]] bool runs(std::uint64_t step) const;
+  /// A step's merged counters, and whether stage 0 ran in it.
+  void record(bool ran, const NarrowCounters& step, std::size_t faces);
+
+ private:
+  double work_with_ = -1;     ///< counted work per candidate of the last step with stage 0 (−1: none yet)
+  double work_without_ = -1;  ///< … and of the last step without it
+};
+
+/// The narrow phase's work in a step, counted: the pairs each stage received (stage 0's two passes, the gather,
+/// stages 1–4, the elementary tests) times that stage's ns per pair (narrow_phase.cpp, StageNs), per candidate
+/// the traversal found; 0 without candidates. A mesh of `faces` triangles (stage 0's float frames).
+[[nodiscard]] double counted_work_per_candidate(const NarrowCounters& c, std::size_t faces);
+
 struct NarrowOptions {
   NarrowMode mode = NarrowMode::batched;
   RepresentativeRule representative = RepresentativeRule::fixed;  // measured faster with batched culling (docs/performance.md)
@@ -85,8 +112,6 @@ class NarrowPhase {
   [[nodiscard]] EdgeEdgeQuery ee_query(Index a, Index b) const;
 
  private:
-  /// Whether stage 0 runs in this step (narrow_phase.cpp, StageNs), given that it can.
-  [[nodiscard]] bool triangle_stage_pays() const;
   /// Stage 1 (feature_bounds.hpp): the coarse 16-bit test on every pair first, the float one (the definition)
   /// on what stages 2–4 leave. Both count as stage 1.
   void cull_kdop(NarrowScratch& scratch, NarrowCounters& c, bool coarse) const;
@@ -111,8 +136,7 @@ class NarrowPhase {
   bool triangle_stage_ = false;       ///< stage 0 runs in this step (begin_step)
   FloatFrames float_frames_;          ///< what stage 0 reads, made in begin_step when it runs
   double triangle_cull_rate_ = 0;     ///< its cull rate in the last step that ran it
-  double work_with_ = -1;             ///< counted work per candidate of the last step with stage 0 (−1: none yet)
-  double work_without_ = -1;          ///< … and of the last step without it
+  TriangleStageRule triangle_rule_;   ///< whether stage 0 runs in a step
   bool carry_orphans_ = false;        ///< the candidates carry the orphans in this step (begin_step)
   std::uint64_t last_candidates_ = 0;  ///< the candidates of the last step
   std::uint64_t steps_ = 0;

@@ -35,6 +35,7 @@ struct RunResult {
   std::vector<FacePairs> candidates;  // sorted, per step (only when the pipeline kept them)
   std::vector<std::uint64_t> hashes;
   std::vector<std::array<std::uint64_t, 3>> work;  // candidate pairs, feature pairs, elementary tests, per step
+  std::vector<bool> end_boxes;  // whether the step tested end boxes
   std::uint64_t bv_tests = 0;
 };
 
@@ -60,6 +61,7 @@ RunResult run(const MeshSequence& scene, PipelineStrategies s, std::size_t hand_
     const StepCounters& k = res.counters;
     r.work.push_back({k.candidate_pairs, k.vf_pairs + k.ee_pairs, k.vf_tests + k.ee_tests});
     r.bv_tests += res.counters.bv_tests;
+    r.end_boxes.push_back(p.end_boxes_in_last_step());
     x0 = std::move(x1);
   }
   return r;
@@ -71,6 +73,27 @@ MeshSequence small_scene() {
   p.frames = 9;
   p.sphere_segments = 12;
   return make_drape_fold_scene(p);
+}
+
+/// A crumpled sheet flying along the diagonal, about seven cells a step, slightly shaken: each face's swept volume
+/// covers hundreds of others, though faces hardly move relative to one another — where end boxes pay.
+MeshSequence flying_sheet(int steps) {
+  MeshData g = test::grid(24, 24);
+  std::mt19937 rng(9);
+  const Positions rest = test::crumple(g.positions, rng, 0.002);
+  auto frames = std::make_shared<std::vector<Positions>>();
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i <= steps; ++i) {
+    Positions x = rest;
+    for (Vec3& p : x) p += 0.3 * i * Vec3(1, 1, 1) + 0.001 * Vec3(u(rng), u(rng), u(rng));
+    frames->push_back(std::move(x));
+  }
+  TriMesh mesh(Index(g.positions.size()), g.faces);
+  std::vector<std::string> labels;
+  for (int i = 0; i <= steps; ++i) labels.push_back(std::to_string(i));
+  auto bodies = single_cloth_body(mesh);
+  return MeshSequence(std::move(mesh), bodies, labels, [frames](int i) { return (*frames)[std::size_t(i)]; },
+                      "flying sheet");
 }
 
 TEST(Schedulers, IdenticalAnswersForEverySchedulerAndThreadCount) {
@@ -141,6 +164,45 @@ TEST(Schedulers, EndBoxesGiveEverySchedulerWidthAndThreadCountTheSameCandidates)
         EXPECT_EQ(r.candidates, reference.candidates);
         EXPECT_EQ(r.hashes, reference.hashes);
       }
+}
+
+TEST(Schedulers, AutomaticEndBoxesRunInTheSameStepsForEveryScheduleWithTheCandidatesOfOnOrOff) {
+  // bv.end_boxes: auto (CcdPipeline::end_boxes_pay) measures without them at step 0 and with them at step 1, then
+  // tests them where they dropped enough; again without at step 16 and with at 17. Whatever the scheduler, width
+  // and thread count, they run in the same steps, and each step finds the candidates of `on` or of `off`.
+  const MeshSequence flying = flying_sheet(19), folding = small_scene();
+  for (const MeshSequence* scene : {&flying, &folding}) {
+    SCOPED_TRACE(scene->description());
+    PipelineStrategies off = make("sequential", {}, 1), on = make("sequential", {}, 1);
+    off.end_boxes = EndBoxMode::off, on.end_boxes = EndBoxMode::on;
+    const RunResult without = run(*scene, std::move(off)), with = run(*scene, std::move(on));
+    const RunResult reference = run(*scene, make("sequential", {}, 1));
+    ASSERT_EQ(reference.end_boxes.size(), std::size_t(scene->num_steps()));
+    for (std::size_t s = 0; s < reference.end_boxes.size(); ++s) {
+      EXPECT_EQ(reference.candidates[s], reference.end_boxes[s] ? with.candidates[s] : without.candidates[s]) << "step " << s;
+      EXPECT_EQ(reference.hashes[s], without.hashes[s]) << "step " << s;
+    }
+    if (scene == &flying) {
+      std::vector<bool> expect(19, true);
+      expect[0] = expect[16] = false;
+      EXPECT_EQ(reference.end_boxes, expect);
+      EXPECT_LT(with.candidates[1].size() * 2, without.candidates[1].size());  // the rule asks for half, or less
+    } else {  // a fold and a drape: they drop too little to pay
+      for (std::size_t s = 2; s < reference.end_boxes.size(); ++s) EXPECT_FALSE(reference.end_boxes[s]) << "step " << s;
+    }
+    for (const char* scheduler : {"sequential", "phc", "static", "front"})
+      for (int width : {2, 4})
+        for (int threads : {1, 3}) {
+          SCOPED_TRACE(std::string(scheduler) + " width " + std::to_string(width) + " x" + std::to_string(threads));
+          PipelineStrategies s = make(scheduler, {}, threads);
+          s.width = width;
+          const RunResult r = run(*scene, std::move(s));
+          EXPECT_EQ(r.end_boxes, reference.end_boxes);
+          EXPECT_EQ(r.candidates, reference.candidates);
+          EXPECT_EQ(r.hashes, reference.hashes);
+          EXPECT_EQ(r.work, reference.work);
+        }
+  }
 }
 
 // phc hands a pass's tasks out largest first by their costs at the last step, only when they are the same tasks

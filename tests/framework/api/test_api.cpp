@@ -46,6 +46,9 @@ TEST(Api, OptionsFromYamlTakeTheStrategyKeys) {
   EXPECT_TRUE(o.normal_cones);
   EXPECT_EQ(o.memory_limit, "1GiB");
   EXPECT_EQ(Options::from_yaml("").scheduler, "sequential");
+  EXPECT_EQ(Options::from_yaml("").end_boxes, "auto");
+  EXPECT_EQ(Options::from_yaml("bv: {end_boxes: true}").end_boxes, "on");
+  EXPECT_EQ(Options::from_yaml("bv: {end_boxes: false}").end_boxes, "off");
   const std::vector<Triangle> faces{{0, 1, 2}};
   EXPECT_NO_THROW(Detector(faces, o));  // the resolved "name:key=value" texts read back
 }
@@ -66,6 +69,9 @@ TEST(Api, OptionErrorsAreLocated) {
   o = Options{};
   o.narrow = "fast";
   EXPECT_NE(error_of([&] { Detector d(faces, o); }).find("Options::narrow"), std::string::npos);
+  o = Options{};
+  o.end_boxes = "yes";
+  EXPECT_NE(error_of([&] { Detector d(faces, o); }).find("Options::end_boxes: expected on, off or auto"), std::string::npos);
 }
 
 TEST(Api, DetectorFindsThePipelinesContactsForEveryScheduler) {

@@ -47,6 +47,8 @@ TEST_F(Config, DefaultsAndTypedValues) {
   auto j = to_json(c);
   EXPECT_EQ(j["scene"]["builtin"], "drape_fold");
   EXPECT_EQ(j["bv"]["k"], 26);
+  EXPECT_EQ(c.end_boxes, EndBoxMode::automatic);
+  EXPECT_EQ(j["bv"]["end_boxes"], "auto");
   EXPECT_NE(to_yaml(j).find("thickness: 0.001"), std::string::npos);
 }
 
@@ -65,6 +67,8 @@ TEST_F(Config, UnknownKeysAreLocatedWithAHint) {
 
 TEST_F(Config, WrongTypesAndValuesAreLocated) {
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\nbv:\n  k: 7\n"), "exp.yaml:3: bv.k: expected one of 6, 14, 18, 26, got '7'");
+  EXPECT_EQ(error_of("scene: {builtin: drape_fold}\nbv: {end_boxes: sometimes}\n"),
+            "exp.yaml:2: bv.end_boxes: expected true, false or auto, got 'sometimes'");
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\nthreads: many\n"), "exp.yaml:2: threads: expected an integer, got 'many'");
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\nthreads: 0\n"),
             "exp.yaml:2: threads: expected an integer in [1, 1024], got '0'");
