@@ -60,8 +60,8 @@ struct FloatFrames {
   UninitializedVector<FloatFramePoints> points;
   UninitializedVector<FloatFaceBoxes> boxes;  ///< per face, from `points` (exact: minima and maxima)
 
-  /// The n vertices' float copy, then the faces' boxes.
-  void update(const Vec3* x_t0, const Vec3* x_t1, std::size_t n, std::span<const Face> faces) {
+  /// The n vertices' float copy, then (with `face_boxes`) the faces' boxes.
+  void update(const Vec3* x_t0, const Vec3* x_t1, std::size_t n, std::span<const Face> faces, bool face_boxes = true) {
     Vec3 lo = n ? x_t0[0] : Vec3::Zero(), hi = lo;
     for (std::size_t v = 0; v < n; ++v) {
       lo = lo.cwiseMin(x_t0[v]).cwiseMin(x_t1[v]);
@@ -82,6 +82,7 @@ struct FloatFrames {
     // |float(q) − q| ≤ 2⁻²⁴|q| and |q − (x − origin)| ≤ 2⁻⁵³|x − origin| ≤ 2⁻⁵²|q|; the factor covers this
     // product's own rounding. A non-finite coordinate makes the error non-finite, and stage 0 then culls nothing.
     error = finite ? radius * (0x1p-24 + 0x1p-52) * (1 + 0x1p-40) : std::numeric_limits<double>::infinity();
+    if (!face_boxes) return;
     boxes.resize(faces.size());
     for (std::size_t f = 0; f < faces.size(); ++f) {
       const FloatFramePoints &a = points[std::size_t(faces[f][0])], &b = points[std::size_t(faces[f][1])],

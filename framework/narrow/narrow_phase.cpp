@@ -21,7 +21,8 @@ using Clock = std::chrono::steady_clock;
 struct StageNs {
   static constexpr double gather = 5;       ///< per candidate gathered
   static constexpr double frames = 4;       ///< stage 0's float frames and face boxes, per face
-  static constexpr double box_pass = 5;     ///< stage 0, x, y, z from the faces' boxes, per candidate
+  static constexpr double box_pass = 5;     ///< stage 0, x, y, z from the faces' boxes, per candidate (counted
+                                            ///< where skipped too: a bias against stage 0 that small)
   static constexpr double fine_pass = 25;   ///< stage 0, the other axes and normals, per candidate reaching them
   static constexpr double kdop = 3, plane = 10, split = 25, proximity = 50;  ///< stages 1–4, per pair received
   static constexpr double test = 150;       ///< per elementary test
@@ -91,12 +92,13 @@ NarrowMode parse_narrow_mode(std::string_view name) {
   fail("narrow.mode: expected 'scalar' or 'batched', got '{}'", name);
 }
 
-void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& bounds) {
+void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& bounds, bool end_boxes) {
   x_t0_ = &x_t0;
   x_t1_ = &x_t1;
   bounds_ = &bounds;
   triangle_stage_ = options_.mode == NarrowMode::batched && tester_.cull_reach() && triangle_rule_.runs(steps_);
-  if (triangle_stage_) float_frames_.update(x_t0.data(), x_t1.data(), x_t0.size(), mesh_.faces());
+  triangle_box_pass_ = !end_boxes;
+  if (triangle_stage_) float_frames_.update(x_t0.data(), x_t1.data(), x_t0.size(), mesh_.faces(), triangle_box_pass_);
   const OrphanSet& orphans = reps_.orphans();
   switch (options_.carry_orphans) {
     case OrphanCarry::always: carry_orphans_ = reps_.carries_orphans(); break;
@@ -154,7 +156,8 @@ void NarrowPhase::gather(std::span<const FacePair> candidates, NarrowScratch& sc
   }
   const auto t = Clock::now();
   scratch.keep.resize(candidates.size());
-  const std::size_t fine = triangle_filter(candidates, mesh_.faces().data(), float_frames_, *reach, scratch.keep.data());
+  const std::size_t fine = triangle_filter(candidates, mesh_.faces().data(), float_frames_, *reach, scratch.keep.data(),
+                                           triangle_box_pass_);
   scratch.candidates.clear();
   append_kept(candidates, scratch.keep.data(), scratch.candidates);
   c.triangle_tested += candidates.size();

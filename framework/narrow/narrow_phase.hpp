@@ -86,8 +86,9 @@ class NarrowPhase {
 
   /// Sets the two frames of the step and every vertex's swept 26-DOP over it (stage 1's bounds, updated by
   /// the caller for this step with the tester's thickness: the pipeline's swept volumes). All three must
-  /// outlive the step.
-  void begin_step(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& bounds);
+  /// outlive the step. `end_boxes`: the traversal tests end boxes in this step, so stage 0 skips its x, y, z
+  /// pass (triangle_filter's box_pass).
+  void begin_step(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& bounds, bool end_boxes = false);
   /// The step's merged counters: the work they count, with and without stage 0, decides whether it runs in the
   /// next steps (and its cull rate whether the candidates carry the orphans).
   void end_step(const NarrowCounters& step);
@@ -134,6 +135,7 @@ class NarrowPhase {
   const Positions* x_t0_ = nullptr;
   const Positions* x_t1_ = nullptr;
   bool triangle_stage_ = false;       ///< stage 0 runs in this step (begin_step)
+  bool triangle_box_pass_ = true;     ///< … with its x, y, z pass (not in steps that test end boxes)
   FloatFrames float_frames_;          ///< what stage 0 reads, made in begin_step when it runs
   double triangle_cull_rate_ = 0;     ///< its cull rate in the last step that ran it
   TriangleStageRule triangle_rule_;   ///< whether stage 0 runs in a step

@@ -257,7 +257,8 @@ HWY_INLINE V GapFactor(D d, const Corners<V>& c, float abs_reach, float rel_reac
 /// 4%): x, y and z from the faces' boxes (a line a face, no arithmetic but the comparisons) on every candidate,
 /// then the other axes on the survivors, kBlock at a time, from their corners.
 std::size_t TriangleFilter(const std::int32_t* pairs, const std::int32_t* faces, const float* x01, const float* boxes,
-                           std::size_t n, float abs_reach, float rel_reach, float error, std::uint8_t* keep) {
+                           std::size_t n, float abs_reach, float rel_reach, float error, std::uint8_t* keep,
+                           bool box_pass) {
   const hn::ScalableTag<float> d;
   using V = hn::Vec<decltype(d)>;
   const std::size_t N = hn::Lanes(d);
@@ -293,14 +294,18 @@ std::size_t TriangleFilter(const std::int32_t* pairs, const std::int32_t* faces,
   };
   for (std::size_t b = 0; b < n; b += kBlock) {
     const std::size_t m = std::min(kBlock, n - b);
-    StageBoxes<kBlock>(pairs + 2 * b, boxes, m, block, kStride);
-    pad(detail::kBoxColumns, m);
-    for (std::size_t i = 0; i < m; i += N) {
-      const std::size_t lanes = std::min(N, m - i);
-      const auto culled = BoxesCulled(d, block, kStride, i, abs_reach, rel_reach, error, hn::FirstN(d, 0));
-      std::uint8_t bits[8] = {};
-      hn::StoreMaskBits(d, culled, bits);
-      for (std::size_t j = 0; j < lanes; ++j) keep[b + i + j] = std::uint8_t(((bits[j / 8] >> (j % 8)) & 1) ^ 1);
+    if (box_pass) {
+      StageBoxes<kBlock>(pairs + 2 * b, boxes, m, block, kStride);
+      pad(detail::kBoxColumns, m);
+      for (std::size_t i = 0; i < m; i += N) {
+        const std::size_t lanes = std::min(N, m - i);
+        const auto culled = BoxesCulled(d, block, kStride, i, abs_reach, rel_reach, error, hn::FirstN(d, 0));
+        std::uint8_t bits[8] = {};
+        hn::StoreMaskBits(d, culled, bits);
+        for (std::size_t j = 0; j < lanes; ++j) keep[b + i + j] = std::uint8_t(((bits[j / 8] >> (j % 8)) & 1) ^ 1);
+      }
+    } else {
+      std::fill_n(keep + b, m, std::uint8_t(1));
     }
     for (std::size_t j = 0; j < m; ++j) {  // branch-free append of the survivors
       const std::size_t row = b + j;
@@ -341,7 +346,7 @@ float float_at_least(double x) {
 }  // namespace
 
 std::size_t triangle_filter(std::span<const FacePair> candidates, const Face* faces, const FloatFrames& frames,
-                            CullReach reach, std::uint8_t* keep) {
+                            CullReach reach, std::uint8_t* keep, bool box_pass) {
   static_assert(sizeof(FacePair) == 2 * sizeof(std::int32_t) && sizeof(Face) == 3 * sizeof(std::int32_t) &&
                     sizeof(FloatFramePoints) == 8 * sizeof(float) && sizeof(FloatFaceBoxes) == 16 * sizeof(float),
                 "TriangleFilter reads ids as packed int32 and coordinate j of point p in frame f at 8p + 4f + j");
@@ -351,7 +356,7 @@ std::size_t triangle_filter(std::span<const FacePair> candidates, const Face* fa
                                        reinterpret_cast<const float*>(frames.points.data()),
                                        reinterpret_cast<const float*>(frames.boxes.data()), candidates.size(),
                                        float_at_least(reach.abs), float_at_least(reach.rel),
-                                       float_at_least(frames.error), keep);
+                                       float_at_least(frames.error), keep, box_pass);
 }
 
 namespace {

@@ -50,9 +50,12 @@ namespace ccdlab {
 /// (Highway, run-time dispatch, as plane_filter); the six corners of a block of candidates are staged in L1,
 /// eight at a time where 256-bit vectors exist (one load a corner, both frames), from the step's float frames;
 /// a vector stops at the first axis that culls all its lanes. Returns how many candidates x, y and z (from the
-/// faces' boxes) left for the second pass, the costly one (NarrowPhase's stage-0 rule counts it).
+/// faces' boxes) left for the second pass, the costly one (NarrowPhase's stage-0 rule counts it). Without
+/// `box_pass` every candidate goes to the second pass (x, y and z untested, which only culls less): for
+/// candidates the traversal's end boxes have already tested on x, y and z (framework/hierarchy/end_boxes.hpp),
+/// where the box pass culls next to nothing (n-body: none of 806K) and `frames` need no face boxes.
 std::size_t triangle_filter(std::span<const FacePair> candidates, const Face* faces, const FloatFrames& frames,
-                            CullReach reach, std::uint8_t* keep);
+                            CullReach reach, std::uint8_t* keep, bool box_pass = true);
 
 /// The same test for one candidate, plain C++: the reference every SIMD target is checked against.
 [[nodiscard]] bool triangle_pair_keeps(const Face& f, const Face& g, const FloatFrames& frames, CullReach reach);

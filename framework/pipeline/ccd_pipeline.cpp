@@ -187,10 +187,10 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   clock.parallel("swept_bv", &tm.swept_bv_ms, [&](PhaseTrace& t) {
     swept_.update(x_t0, x_t1, strategies_.tester->thickness(), strategies_.threads, t);
   });
-  narrow_.begin_step(x_t0, x_t1, swept_);
+  ends_in_step_ = end_boxes_pay();
+  narrow_.begin_step(x_t0, x_t1, swept_, ends_in_step_);
 
   // 2. Body hierarchies: refit, restructure, then what hangs on the topology.
-  ends_in_step_ = end_boxes_pay();
   const std::optional<double> end_reach = ends_in_step_ ? std::optional(this->end_reach()) : std::nullopt;
   for (BodyHierarchy& body : bodies_)
     clock.parallel("refit", &tm.refit_ms, [&](PhaseTrace& t) { body.refit(swept_, end_reach, t); });

@@ -82,6 +82,17 @@ TEST(TriangleFilter, EverySimdTargetAgreesWithThePlainVersion) {
         fine.push_back(triangle_filter(r.candidates, r.faces.data(), frames, reach, keep.data()));
         EXPECT_EQ(keep, expect) << hwy::TargetName(t) << " motion " << motion << " reach " << reach.abs;
         EXPECT_EQ(fine.back(), fine.front()) << hwy::TargetName(t);
+        // Without the box pass (steps that tested end boxes): every candidate to the second pass, which keeps
+        // all that both passes keep and culls only by the other axes — the same answers on every target.
+        std::vector<std::uint8_t> keep_all(expect.size(), 7);
+        EXPECT_EQ(triangle_filter(r.candidates, r.faces.data(), frames, reach, keep_all.data(), false), expect.size());
+        std::size_t more = 0;
+        for (std::size_t i = 0; i < expect.size(); ++i) {
+          EXPECT_TRUE(keep_all[i] == 0 || keep_all[i] == 1);
+          EXPECT_GE(keep_all[i], keep[i]) << i;
+          more += keep_all[i] > keep[i];
+        }
+        EXPECT_LT(more, culled) << hwy::TargetName(t) << ": the other axes culled nothing";
       }
       // Every kept candidate went through both passes; x, y and z alone drop some of the culled ones.
       EXPECT_GE(fine.front(), expect.size() - culled);
