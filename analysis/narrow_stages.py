@@ -7,7 +7,7 @@
 
 Runs `CLI run CONFIG --set threads=T --set output.dir=TMP --no-progress` (a steady config: experiments/configs/
 steady/), A and B alternating (A B, B A, ...), and prints one Markdown row per narrow stage and side: the
-median thread-ms over steps 2..N of every run, the pairs it received and removed (counts of one step; the
+median thread-ms over steps 2..N of every run, the pairs it received and removed (counts of the last step; the
 "in" of stages 2–4 is what they and the later stages removed plus the elementary tests, i.e. it leaves out
 the few that stage 1's final float test removes after stage 4), and ns per pair in. Both sides must report
 the same contact hash (exit 1 otherwise).
@@ -85,7 +85,9 @@ def main():
             status = 1
         later = {side: [s for r in rs for s in r[1:]] for side, rs in runs.items()}
         name = os.path.splitext(os.path.basename(config))[0]
-        rows = {side: stages(later[side][0]) for side in later}
+        # Counts of the last step: past the measuring steps of the per-step rules (end boxes, stage 0), which
+        # run with a stage the other steps may leave out.
+        rows = {side: stages(later[side][-1]) for side in later}
         for k, (stage, _, _, key) in enumerate(rows["A"]):
             ms = {side: statistics.median(s["narrow_stages"].get(key, 0.0) for s in later[side]) for side in later}
             cell, ns = {}, {}

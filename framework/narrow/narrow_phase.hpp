@@ -37,8 +37,8 @@ enum class NarrowMode { scalar, batched };
 enum class OrphanCarry { when_it_pays, always, never };
 
 /// Whether stage 0 (triangle_filter.hpp) runs in a step: when the narrow phase's counted work per candidate was
-/// smaller in the last step that ran it than in the last step that did not (docs/narrow-phase.md, "Stage 0 by
-/// the work it saves"). Counted, not timed, and from whole steps, so that every schedule decides alike and every
+/// smaller in the last step that ran it than in the last step that did not (docs/narrow-phase.md, "End boxes
+/// where they pay, stage 0 by the work it saves"). Counted, not timed, and from whole steps, so that every schedule decides alike and every
 /// work counter is independent of how the candidates are cut into chunks (schedulers, threads, slices). What a
 /// culled candidate saves varies 4× between real steps at the same cull rate — its feature pairs die in stage 1
 /// on rod-twist, but reach the costly stage 3 on n-body once end boxes have dropped the easy candidates — so no

@@ -15,7 +15,7 @@ namespace {
 /// beside the k-DOPs) and 12 more compares per node pair the walk opens; they save the node pairs and the
 /// candidates they drop. They run in a step when the last step run with them kept at most kEndsKeepAtMost of
 /// the candidates of the last step run without them, and dropped at least kEndsDropPerFace candidates per face
-/// (docs/wide-bvh.md, "End boxes": n-body keeps 0.18 and drops 26 a face, cloth_ball 0.04 and 19: they pay;
+/// (docs/wide-bvh.md, "End boxes": n-body keeps 0.18 and drops 26 a face, cloth_ball 0.04 and 15: they pay;
 /// rod-twist keeps 0.84 and drops 1.4, the funnel 0.81 and 0.1: they cost). Both counts are measured again every
 /// kEndsRemeasure steps, one step without (step 0 mod 16), then one with (1 mod 16) when the step without had
 /// enough candidates to drop. Whole-step candidate counts are the same for every scheduler, width, thread count
@@ -23,6 +23,8 @@ namespace {
 constexpr double kEndsKeepAtMost = 0.5;
 constexpr double kEndsDropPerFace = 4;
 constexpr std::uint64_t kEndsRemeasure = 16;
+static_assert(kEndsRemeasure == TriangleStageRule::kRemeasure,
+              "stage 0 measures at 2 and 3 mod 16, after the end boxes' steps 0 and 1, on the same kind of candidates");
 
 }  // namespace
 
