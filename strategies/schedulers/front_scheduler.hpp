@@ -66,6 +66,7 @@ class FrontScheduler final : public TraversalScheduler {
     std::size_t size = 0;  ///< node pairs on the cut
     std::size_t size_after_rebuild = 0;
     std::uint64_t bvh_version = 0;  ///< of the BVHs it was built on: a restructured BVH invalidates the front
+    bool test_ends = false;         ///< whether its last step tested end boxes (TraversalPass::test_ends)
     int steps_since_rebuild = 0;
   };
   /// One step of a front: its pieces cut into tasks of at most `chunk` entries, `process` on threads, the new
