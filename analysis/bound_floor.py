@@ -6,7 +6,8 @@
 The traversal's candidates are the non-adjacent face pairs (no shared vertex) whose swept k-DOPs overlap: each
 face bounded over the whole step. Splitting the step into P time pieces and bounding each piece on its own
 (motion is linear, so a piece's bound is the k-DOP of the face's corners at the piece's two ends) keeps a pair
-only if some piece's bounds overlap. This prints, as a Markdown table, how many candidates survive each split.
+only if some piece's bounds overlap. This prints, as a Markdown table, how many candidates survive each split;
+then how many candidates join two faces of one connected piece (a rod's or a sheet's self-collision pairs).
 
 The last row is the floor of every split: the pairs whose faces' k-DOPs already overlap at t0 or at t1. The first
 piece's bound holds the face at t0 and the last piece's holds it at t1, so no split into time pieces, however
@@ -105,7 +106,8 @@ def surviving(boxes, i, j):
 
 
 def floor_table(p0, p1, faces, k, pieces):
-    """[(row label, candidates)]: the whole-step swept k-DOPs, each split into time pieces, and the floor."""
+    """([(row label, candidates)], candidates within one piece): the whole-step swept k-DOPs, each split into time
+    pieces, and the floor."""
     axes = np.asarray(KDOP_AXES[k], dtype=np.float64)
     i, j = swept_candidates(p0, p1, faces, kdops([p0, p1], faces, axes))
     rows = [(f"swept {k}-DOP over the step (the traversal's test)", len(i))]
@@ -115,7 +117,18 @@ def floor_table(p0, p1, faces, k, pieces):
         rows.append((f"split into {n} time pieces", surviving(boxes, i, j)))
     rows.append((f"floor: {k}-DOPs overlap at t0 or at t1", surviving([kdops([p0], faces, axes),
                                                                      kdops([p1], faces, axes)], i, j)))
-    return rows
+    return rows, same_piece(faces, i, j)
+
+
+def same_piece(faces, i, j):
+    """(how many pairs (i, j) join two faces of one connected piece (a rod, a sheet), how many pieces)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    n = int(faces.max()) + 1
+    edges = coo_matrix((np.ones(2 * len(faces)), (faces[:, [0, 0]].ravel(), faces[:, [1, 2]].ravel())), shape=(n, n))
+    _, vertex_piece = connected_components(edges, directed=False)
+    piece = vertex_piece[faces[:, 0]]
+    return int((piece[i] == piece[j]).sum()), len(np.unique(piece))
 
 
 def main():
@@ -132,13 +145,15 @@ def main():
     if any(n < 1 for n in pieces):
         sys.exit(f"bound_floor: --pieces: every number of pieces must be at least 1, got '{args.pieces}'")
     p0, p1, faces = read_frames(args.frame_a, args.frame_b)
-    rows = floor_table(p0, p1, faces, args.k, pieces)
+    rows, (within, n_pieces) = floor_table(p0, p1, faces, args.k, pieces)
     whole = rows[0][1]
     print(f"{args.frame_a} → {args.frame_b}: {len(faces):,} faces\n")
     print("| bound | candidate face pairs | share of the swept k-DOP's |")
     print("|---|---|---|")
     for label, count in rows:
         print(f"| {label} | {count:,} | {count / whole:.2f} |" if whole else f"| {label} | {count:,} | — |")
+    print(f"\n{within:,} of the {whole:,} swept candidates join two faces of one connected piece "
+          f"({n_pieces:,} pieces).")
 
 
 if __name__ == "__main__":

@@ -64,3 +64,22 @@ def test_frames_that_do_not_match_fail_naming_the_file(tmp_path):
 def test_bad_pieces_fail(tmp_path):
     done = run(*write_step(tmp_path), "--pieces", "2,x")
     assert done.returncode != 0 and "--pieces" in done.stderr
+
+
+def test_pairs_within_one_piece_are_counted_apart(tmp_path):
+    # A strip of three faces: f0 and f2 share no vertex but are joined through f1, and f2 lies over f0 (one
+    # candidate, within one piece); f3, a separate piece, lies over f0 too (a candidate between pieces).
+    points = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0],          # f0
+                       [5, 5, 5],                                # f1 = (2, 3, 4)
+                       [0.2, 0.2, 0], [0.8, 0.2, 0], [0.2, 0.8, 0],  # f2
+                       [0.3, 0.3, 0], [0.9, 0.3, 0], [0.3, 0.9, 0]], dtype=float)  # f3
+    faces = np.array([[0, 1, 2], [2, 3, 4], [4, 5, 6], [7, 8, 9]])
+    a, b = tmp_path / "a.ply", tmp_path / "b.ply"
+    for path in (a, b):
+        meshio.write(str(path), meshio.Mesh(points, [("triangle", faces)]), binary=False)
+    done = run(a, b, "--k", "6", "--pieces", "2")
+    assert done.returncode == 0, done.stderr
+    # f0-f2 (one piece), f0-f3, f2-f3 and f1-f3 (f1's box reaches down to f3's): 4 candidates, all overlapping
+    # at rest, one of them within a piece.
+    assert counts(done.stdout) == [4, 4, 4]
+    assert "1 of the 4 swept candidates join two faces of one connected piece (2 pieces)" in done.stdout
