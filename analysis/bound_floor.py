@@ -7,7 +7,8 @@ The traversal's candidates are the non-adjacent face pairs (no shared vertex) wh
 face bounded over the whole step. Splitting the step into P time pieces and bounding each piece on its own
 (motion is linear, so a piece's bound is the k-DOP of the face's corners at the piece's two ends) keeps a pair
 only if some piece's bounds overlap. This prints, as a Markdown table, how many candidates survive each split;
-then how many candidates join two faces of one connected piece (a rod's or a sheet's self-collision pairs).
+then how many candidates join two faces of one connected piece (a rod's or a sheet's self-collision pairs), and
+with --features the vertex-face and edge-edge pairs whose own swept k-DOPs overlap (a broad phase on features).
 
 The last row is the floor of every split: the pairs whose faces' k-DOPs already overlap at t0 or at t1. The first
 piece's bound holds the face at t0 and the last piece's holds it at t1, so no split into time pieces, however
@@ -67,7 +68,8 @@ def overlap(box, i, j):
 
 
 def swept_candidates(p0, p1, faces, box):
-    """(i, j), i < j: the non-adjacent face pairs whose swept k-DOPs `box` overlap."""
+    """(i, j), i < j: the pairs of `faces` (vertex triples; an edge repeats a vertex, a vertex is itself thrice)
+    that share no vertex and whose swept k-DOPs `box` overlap."""
     from scipy.spatial import cKDTree
     lo, hi = box[0][:, :3], box[1][:, :3]  # x, y, z are the first three axes of every table
     center, radius = (lo + hi) / 2, np.linalg.norm(hi - lo, axis=1) / 2
@@ -131,12 +133,29 @@ def same_piece(faces, i, j):
     return int((piece[i] == piece[j]).sum()), len(np.unique(piece))
 
 
+def feature_pairs(p0, p1, faces, k):
+    """(VF, EE): the vertex-face and edge-edge pairs sharing no vertex whose swept k-DOPs overlap, i.e. what a
+    broad phase on features instead of faces would hand to the narrow phase (before any feature-level culling)."""
+    axes = np.asarray(KDOP_AXES[k], dtype=np.float64)
+    edges = np.unique(np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1), axis=0)
+    n = len(p0)
+    points = np.repeat(np.arange(n)[:, None], 3, axis=1)
+    with_faces = np.concatenate([points, faces])  # one search: only its vertex-face pairs are counted
+    i, j = swept_candidates(p0, p1, with_faces, kdops([p0, p1], with_faces, axes))
+    vf = int(((i < n) & (j >= n)).sum())  # i < j, so a vertex is always i
+    segments = edges[:, [0, 1, 1]]
+    ee = len(swept_candidates(p0, p1, segments, kdops([p0, p1], segments, axes))[0])
+    return vf, ee
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("frame_a")
     ap.add_argument("frame_b")
     ap.add_argument("--k", type=int, default=18, choices=sorted(KDOP_AXES))
     ap.add_argument("--pieces", default="2,4,8", help="comma-separated numbers of time pieces")
+    ap.add_argument("--features", action="store_true",
+                    help="also count the vertex-face and edge-edge pairs whose own swept k-DOPs overlap")
     args = ap.parse_args()
     try:
         pieces = [int(n) for n in args.pieces.split(",")]
@@ -154,6 +173,10 @@ def main():
         print(f"| {label} | {count:,} | {count / whole:.2f} |" if whole else f"| {label} | {count:,} | — |")
     print(f"\n{within:,} of the {whole:,} swept candidates join two faces of one connected piece "
           f"({n_pieces:,} pieces).")
+    if args.features:
+        vf, ee = feature_pairs(p0, p1, faces, args.k)
+        print(f"Feature pairs sharing no vertex whose swept {args.k}-DOPs overlap: {vf:,} vertex-face + {ee:,} "
+              f"edge-edge = {vf + ee:,}.")
 
 
 if __name__ == "__main__":

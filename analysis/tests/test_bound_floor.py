@@ -83,3 +83,34 @@ def test_pairs_within_one_piece_are_counted_apart(tmp_path):
     # at rest, one of them within a piece.
     assert counts(done.stdout) == [4, 4, 4]
     assert "1 of the 4 swept candidates join two faces of one connected piece (2 pieces)" in done.stdout
+
+
+def test_feature_pairs_equal_brute_force_on_boxes(tmp_path):
+    # A 5 x 5 vertex grid, crumpled and moved at random: every vertex-face and edge-edge pair sharing no vertex,
+    # tested box against box (K = 6), must give the script's counts.
+    rng = np.random.default_rng(7)
+    n = 5
+    grid = np.array([[x, y, 0.0] for y in range(n) for x in range(n)]) + rng.normal(0, 0.3, (n * n, 3))
+    faces = np.array([f for y in range(n - 1) for x in range(n - 1) for f in
+                      ([y * n + x, y * n + x + 1, (y + 1) * n + x],
+                       [y * n + x + 1, (y + 1) * n + x + 1, (y + 1) * n + x])])
+    end = grid + rng.normal(0, 0.8, grid.shape)
+    a, b = tmp_path / "a.ply", tmp_path / "b.ply"
+    meshio.write(str(a), meshio.Mesh(grid, [("triangle", faces)]), binary=False)
+    meshio.write(str(b), meshio.Mesh(end, [("triangle", faces)]), binary=False)
+    # The PLY round trip keeps float64, so the brute force reads the same numbers.
+    def box(ids):
+        pts = np.concatenate([grid[ids], end[ids]])
+        return pts.min(axis=0), pts.max(axis=0)
+
+    def overlap(p, q):
+        return bool(np.all(p[0] <= q[1]) and np.all(q[0] <= p[1]))
+
+    edges = sorted({tuple(sorted((f[u], f[(u + 1) % 3]))) for f in faces for u in range(3)})
+    vf = sum(overlap(box([v]), box(f)) for v in range(n * n) for f in faces if v not in f)
+    ee = sum(overlap(box(list(e)), box(list(g))) for k, e in enumerate(edges) for g in edges[k + 1:]
+             if not set(e) & set(g))
+    assert vf > 0 and ee > 0
+    done = run(a, b, "--k", "6", "--pieces", "2", "--features")
+    assert done.returncode == 0, done.stderr
+    assert f"{vf:,} vertex-face + {ee:,} edge-edge" in done.stdout, (vf, ee, done.stdout)
