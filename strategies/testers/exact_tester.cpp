@@ -173,23 +173,8 @@ ExactTester::Decision decide_points(const std::array<Vec3, 4>& x0, const std::ar
   return {};
 }
 
-
-/// The decision of the interval classification of f's windows, when it reaches one (see the header).
-/// Narrows a window [a, b] that holds the earliest contact (no contact before a, classify(a, b) = contact) by
-/// bisection. The contact verdict proved the features inside (crossing) throughout [a, b], so its contact times
-/// are the roots of f there and only f's sign is examined: the left half is dropped when f ≠ 0 on it (proven),
-/// kept when f changes sign across it (a root, proven). Stops at adjacent doubles or where neither can be
-/// proven (interval bounds near their rounding floor).
-std::pair<double, double> narrow_contact(const interval_ccd::RelativeMotion& m, double a, double b) {
-  while (true) {
-    const double mid = 0.5 * (a + b);
-    if (!(mid > a && mid < b)) return {a, b};
-    const interval_ccd::Verdict left = interval_ccd::classify(m, a, mid, true);
-    if (left == interval_ccd::Verdict::separated) a = mid;
-    else if (left == interval_ccd::Verdict::contact) b = mid;
-    else return {a, b};
-  }
-}
+// The decision of the interval classification of f's windows, when it reaches one (see the header); a contact
+// window is narrowed by interval_ccd::narrow_root.
 
 /// What settling one window led to: none of its contacts (go on to the next), the earliest contact (`out`), or
 /// nothing proven (the algebra decides the query).
@@ -208,7 +193,7 @@ Settled settle(const interval_ccd::RelativeMotion& m, double a, double b, int de
     case interval_ccd::Verdict::separated:
       return Settled::apart;
     case interval_ccd::Verdict::contact: {
-      const auto [lo, hi] = narrow_contact(m, a, b);
+      const auto [lo, hi] = interval_ccd::narrow_root(m, a, b);
       if (hi - lo > kToiWidth) return Settled::undecided;  // the time stays too loose: the algebra gives it to adjacent doubles
       out = ExactTester::Decision{true, lo, hi, true};
       return Settled::contact;

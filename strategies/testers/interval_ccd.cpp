@@ -289,20 +289,46 @@ Verdict classify(const RelativeMotion& m, double tl, double th, bool coplanarity
   return !all_positive(nn) && separated_along_axes(m, Ai, Bi, Ci) ? Verdict::separated : Verdict::unknown;
 }
 
+namespace {
+
+/// Three times f's Bernstein coefficients on [tl, th], as intervals (the scaled form's ĉ_1, ĉ_2 are already
+/// C(3, k) = 3 times theirs; the ends are multiplied to match): one positive factor, so the same signs, and the
+/// form de Casteljau subdivides. From classify's Bounded arithmetic, so as tight as its sign test.
+Poly<Interval, 3> coplanarity_coefficients(const RelativeMotion& m, double tl, double th) {
+  const LinVecT<Bounded> A = on_window(m.a0, m.a1, tl, th), B = on_window(m.b0, m.b1, tl, th), C = on_window(m.c0, m.c1, tl, th);
+  const Poly<Bounded, 3> f = dot(A, cross(B, C));
+  return Poly<Interval, 3>{
+      {Interval(3.0) * to_interval(f[0]), to_interval(f[1]), to_interval(f[2]), Interval(3.0) * to_interval(f[3])}};
+}
+
+/// de Casteljau at the window's midpoint: the coefficients of its left and right halves (a few additions).
+std::pair<Poly<Interval, 3>, Poly<Interval, 3>> halves(const Poly<Interval, 3>& b) {
+  const Interval m01 = half(b[0] + b[1]), m12 = half(b[1] + b[2]), m23 = half(b[2] + b[3]);
+  const Interval m012 = half(m01 + m12), m123 = half(m12 + m23), mid = half(m012 + m123);
+  return {Poly<Interval, 3>{{b[0], m01, m012, mid}}, Poly<Interval, 3>{{mid, m123, m23, b[3]}}};
+}
+
+/// classify's coplanarity-only verdict, from coefficients: f keeps one sign (separated), or its end values have
+/// certain, opposite signs (contact: a root inside), or neither is proven.
+Verdict sign_verdict(const Poly<Interval, 3>& b) {
+  if (all_positive(b) || all_negative(b)) return Verdict::separated;
+  const bool root = (b[0].certainly_negative() && b[3].certainly_positive()) ||
+                    (b[0].certainly_positive() && b[3].certainly_negative());
+  return root ? Verdict::contact : Verdict::unknown;
+}
+
+}  // namespace
+
 bool for_each_coplanarity_window(const RelativeMotion& m, double tl, double th, double width,
                                  const std::function<bool(double, double)>& visit) {
   // f's coefficients on [tl, th] in double with their error bound, as intervals; then subdivision in intervals.
-  const LinVecT<Bounded> A = on_window(m.a0, m.a1, tl, th), B = on_window(m.b0, m.b1, tl, th), C = on_window(m.c0, m.c1, tl, th);
-  const Poly<Bounded, 3> f = dot(A, cross(B, C));
-  const Poly<Interval, 3> scaled{{to_interval(f[0]), to_interval(f[1]), to_interval(f[2]), to_interval(f[3])}};
-  // Three times the Bernstein coefficients (C(3,1) = C(3,2) = 3): one positive factor, same signs.
   struct Node {
     Poly<Interval, 3> b;
     double tl, th;
   };
   std::array<Node, 64> stack;
   int n = 0;
-  stack[n++] = {Poly<Interval, 3>{{Interval(3.0) * scaled[0], scaled[1], scaled[2], Interval(3.0) * scaled[3]}}, tl, th};
+  stack[n++] = {coplanarity_coefficients(m, tl, th), tl, th};
   while (n > 0) {
     const Node node = stack[--n];
     if (all_positive(node.b) || all_negative(node.b)) continue;
@@ -310,15 +336,32 @@ bool for_each_coplanarity_window(const RelativeMotion& m, double tl, double th, 
       if (visit(node.tl, node.th)) return true;
       continue;
     }
-    // de Casteljau at the midpoint: left and right halves' coefficients.
-    const Poly<Interval, 3>& b = node.b;
-    const Interval m01 = half(b[0] + b[1]), m12 = half(b[1] + b[2]), m23 = half(b[2] + b[3]);
-    const Interval m012 = half(m01 + m12), m123 = half(m12 + m23), mid = half(m012 + m123);
+    const auto [left, right] = halves(node.b);
     const double tm = 0.5 * (node.tl + node.th);
-    stack[n++] = {Poly<Interval, 3>{{mid, m123, m23, b[3]}}, tm, node.th};
-    stack[n++] = {Poly<Interval, 3>{{b[0], m01, m012, mid}}, node.tl, tm};
+    stack[n++] = {right, tm, node.th};
+    stack[n++] = {left, node.tl, tm};
   }
   return false;
+}
+
+std::pair<double, double> narrow_root(const RelativeMotion& m, double a, double b) {
+  Poly<Interval, 3> coefficients = coplanarity_coefficients(m, a, b);
+  while (true) {
+    const double mid = 0.5 * (a + b);
+    if (!(mid > a && mid < b)) return {a, b};
+    auto [left, right] = halves(coefficients);
+    Verdict v = sign_verdict(left);
+    if (v == Verdict::unknown) {
+      // The subdivided bounds have widened past what they can prove: classify the half afresh, and go on from
+      // fresh coefficients of the half it keeps.
+      v = classify(m, a, mid, true);
+      if (v == Verdict::unknown) return {a, b};
+      if (v == Verdict::separated) right = coplanarity_coefficients(m, mid, b);
+      else left = coplanarity_coefficients(m, a, mid);
+    }
+    if (v == Verdict::separated) a = mid, coefficients = right;
+    else b = mid, coefficients = left;
+  }
 }
 
 double earliest_coplanarity(const RelativeMotion& m, double tl, double th, double width) {

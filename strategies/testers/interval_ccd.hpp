@@ -15,6 +15,7 @@
 // Tang et al. 2010 use the same bound on f as a non-penetration filter).
 #include <array>
 #include <functional>
+#include <utility>
 
 #include "framework/geometry/interval.hpp"
 #include "framework/primitive/contact.hpp"
@@ -63,6 +64,16 @@ Verdict classify(const RelativeMotion& m, double tl, double th, bool coplanarity
 /// the visited windows. Returns false when every window was visited without a stop.
 bool for_each_coplanarity_window(const RelativeMotion& m, double tl, double th, double width,
                                  const std::function<bool(double, double)>& visit);
+
+/// Narrows a window [a, b] that holds the earliest contact (none before a; classify(a, b) = contact) by
+/// bisection, as far as f's sign can be proven: the contact verdict proved the features inside (crossing)
+/// throughout [a, b], so its contact times are the roots of f there. The left half is dropped when f ≠ 0 on it
+/// (proven), kept when f changes sign across it (a root, proven); it stops at adjacent doubles or where neither
+/// can be proven. Each half is first decided from the window's coefficients subdivided (de Casteljau in
+/// intervals: a few additions), and only where those bounds have grown too wide, by classify(m, a, mid, true)
+/// from fresh ones. The two prove exclusive facts, so where both decide they agree: the result is the window
+/// that bisection by classify alone reaches, or a narrower one within it.
+std::pair<double, double> narrow_root(const RelativeMotion& m, double a, double b);
 
 /// The start of the earliest such window (a lower bound on any contact time in [tl, th]); th if there is none.
 double earliest_coplanarity(const RelativeMotion& m, double tl, double th, double width);

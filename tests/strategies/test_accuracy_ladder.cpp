@@ -16,6 +16,7 @@
 #include "strategies/testers/exact_tester.hpp"
 #include "strategies/testers/filtered_tester.hpp"
 #include "strategies/testers/float_tester.hpp"
+#include "strategies/testers/interval_ccd.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
@@ -195,6 +196,55 @@ TEST(AccuracyLadder, ConservativeNeverMissesWhatExactFindsOnRandomNearContacts) 
         EXPECT_GT(hits, 250u) << "the generator should aim at contacts";
       }
     }
+}
+
+/// What narrow_root must equal or narrow: bisection of a contact window by classify alone.
+std::pair<double, double> bisect_by_classify(const interval_ccd::RelativeMotion& m, double a, double b) {
+  while (true) {
+    const double mid = 0.5 * (a + b);
+    if (!(mid > a && mid < b)) return {a, b};
+    const interval_ccd::Verdict v = interval_ccd::classify(m, a, mid, true);
+    if (v == interval_ccd::Verdict::separated) a = mid;
+    else if (v == interval_ccd::Verdict::contact) b = mid;
+    else return {a, b};
+  }
+}
+
+TEST(AccuracyLadder, ExactNarrowsAContactWindowWithinWhatClassifyAloneProvesAroundTheAlgebraicRoot) {
+  // The first contact window of each query (as exact's certification finds it: windows of 2^-12 where f may
+  // vanish, earlier ones separated), narrowed by narrow_root's subdivided bounds, must lie within bisection by
+  // classify alone, and hold the earliest root the algebra (no certification) finds.
+  const ExactTester algebra({false, false});
+  std::size_t checked = 0, narrower = 0;
+  auto check = [&](const auto& q, const std::string& origin) {
+    const interval_ccd::RelativeMotion m = interval_ccd::relative_motion(q);
+    interval_ccd::for_each_coplanarity_window(m, 0.0, 1.0, 0x1p-12, [&](double a, double b) {
+      const interval_ccd::Verdict v = interval_ccd::classify(m, a, b);
+      if (v != interval_ccd::Verdict::contact) return v == interval_ccd::Verdict::unknown;  // skip the query
+      const auto [lo, hi] = interval_ccd::narrow_root(m, a, b);
+      const auto [ref_lo, ref_hi] = bisect_by_classify(m, a, b);
+      EXPECT_LE(ref_lo, lo) << origin;
+      EXPECT_LE(hi, ref_hi) << origin;
+      EXPECT_LT(lo, hi) << origin;
+      const ExactTester::Decision d = algebra.decide(q);
+      EXPECT_TRUE(d.hit) << origin;
+      EXPECT_LE(lo, d.toi_hi) << origin;
+      EXPECT_LE(d.toi_lo, hi) << origin;
+      ++checked;
+      narrower += hi - lo < ref_hi - ref_lo;
+      return true;
+    });
+  };
+  auto check_set = [&](const QuerySet& s) {
+    for (std::size_t i = 0; i < s.size(); ++i)
+      s.kind == ContactKind::vf ? check(s.vf[i], s.origin[i]) : check(s.ee[i], s.origin[i]);
+  };
+  for (const ContactKind kind : {ContactKind::vf, ContactKind::ee})
+    check_set(random_near_contacts(kind, 300, 0.0, 19 + unsigned(kind)));
+  for (const auto& s : hard_case_sets()) check_set(s);
+  EXPECT_GT(checked, 400u);
+  std::cout << "[exact] contact windows narrowed: " << checked << ", narrower than classify alone: " << narrower
+            << "\n";
 }
 
 TEST(AccuracyLadder, ConservativeNeverMissesWhatExactFindsOnUniformRandomQueries) {
