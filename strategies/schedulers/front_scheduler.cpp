@@ -143,8 +143,8 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
     const std::uint64_t version = pass.bvh_a->version + (pass.self ? 0 : pass.bvh_b->version);
     const bool none = wide ? front.wide.empty() : front.binary.empty();
     // End boxes turned on (bv.end_boxes: auto, CcdPipeline::end_boxes_pay): the front stops where the k-DOPs alone
-    // stopped, far below where end boxes stop a walk (n-body: 9.4M nodes against 4.0M), and pruning climbs one
-    // level at a time — the walk was 1.6× longer. Start again from the seeds. (Turned off, it only sprouts.)
+    // stopped, far below where end boxes stop a walk, and pruning climbs one level a step, so start again from the
+    // seeds (docs/wide-bvh.md has the measurement). Turned off, the front only sprouts.
     const bool ends_on = pass.test_ends && !front.test_ends;
     front.test_ends = pass.test_ends;
     const bool rebuild = none || grown || due || version != front.bvh_version || ends_on;
