@@ -13,6 +13,7 @@
 #include <string>
 
 #include "framework/narrow/plane_filter.hpp"
+#include "framework/pipeline/brute_force.hpp"
 #include "framework/traversal/bvtt.hpp"
 #include "framework/scene/mesh_sequence.hpp"
 #include "strategies/registry.hpp"

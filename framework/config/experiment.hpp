@@ -56,7 +56,7 @@ struct ExperimentConfig {
   SceneConfig scene;
   int k = 18;
   int width = kDefaultBvhWidth;     ///< bv.width: 2 (binary BVTT) or 4 (framework/hierarchy/wide_bvh.hpp)
-  EndBoxMode end_boxes = EndBoxMode::automatic;  ///< bv.end_boxes: also test nodes' boxes at both ends (framework/hierarchy/end_boxes.hpp)
+  EndBoxMode end_boxes = EndBoxMode::automatic;  ///< bv.end_boxes: also test nodes' boxes at both ends (framework/swept/end_boxes.hpp)
   StrategyChoice hierarchy{"median", {}};
   StrategyChoice scheduler{"sequential", {}};
   int threads = 1;

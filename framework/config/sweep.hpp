@@ -1,5 +1,5 @@
 #pragma once
-// Sweeps in YAML (issue 10): an experiment file with a `sweep:` block runs once per combination of values.
+// Sweeps in YAML: an experiment file with a `sweep:` block runs once per combination of values.
 //
 //   sweep:
 //     bv.k: [6, 14, 18, 26]        # any dotted config key: a list of values (or one value); Cartesian product,

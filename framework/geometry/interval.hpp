@@ -18,7 +18,7 @@ constexpr double kUlpFactor = 0x1p-52;  // ≥ ulp(x) / |x| for every normal x
 /// A double ≤ x − ulp(x) for normal x (the rounding error of an operation is at most ulp(x) / 2). Subnormal
 /// sums and differences are exact, so they need no widening; products that underflow are handled in
 /// operator*. (Adding a constant "tiny" here instead would make exact zeros subnormal-sized intervals, and
-/// arithmetic on subnormals costs ~100× on x86.)
+/// arithmetic on subnormals is very slow on x86.)
 inline double widen_down(double x) { return x - std::abs(x) * kUlpFactor; }
 /// A double ≥ x + ulp(x) for normal x.
 inline double widen_up(double x) { return x + std::abs(x) * kUlpFactor; }

@@ -1,6 +1,6 @@
 #pragma once
 // k-DOP bounding volumes (discrete oriented polytopes) for K = 6, 14, 18, 26, with the axis tables of the
-// seed paper (docs/paper-summary.md). A K-DOP stores, for each of its K/2 fixed axes d_i, the interval
+// seed paper (../shared/docs/paper-summary.md). A K-DOP stores, for each of its K/2 fixed axes d_i, the interval
 // [min_i, max_i] of d_i · x over the bounded points. The axes are NOT normalised: d_i · x is exact up to one
 // or two roundings for the integer axes below, and thickness is inflated by |d_i|.
 //
@@ -18,7 +18,9 @@
 #include <concepts>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <utility>
+#include <variant>
 
 #include "framework/geometry/vec.hpp"
 
@@ -90,13 +92,69 @@ inline float round_up(double x) {
 }
 }  // namespace detail
 
-/// The K that have axis tables: the one list every config, CLI flag and binding checks bv.k against.
-inline constexpr bool is_kdop_k(int k) { return k == 6 || k == 14 || k == 18 || k == 26; }
-inline constexpr const char* kKdopKs = "6, 14, 18, 26";
+template <int K>
+class KDop;
+
+/// The K that have axis tables, as one type list. Everything chosen by a run-time K derives from it: is_kdop_k,
+/// the text kKdopKs every config, CLI flag and binding quotes, and the variants over the k-DOP types (KdopVariant).
+template <int... Ks>
+struct KdopKList {
+  static constexpr std::array<int, sizeof...(Ks)> values{Ks...};
+  /// std::variant<Array<KDop<K>>...> over the list's K, in its order.
+  template <template <class> class Array>
+  using variant = std::variant<Array<KDop<Ks>>...>;
+};
+using KdopKs = KdopKList<6, 14, 18, 26>;
+
+inline constexpr bool is_kdop_k(int k) {
+  for (int v : KdopKs::values)
+    if (v == k) return true;
+  return false;
+}
+
+namespace detail {
+/// KdopKs::values as text, "6, 14, 18, 26", at compile time.
+constexpr std::size_t k_list_text_size() {
+  std::size_t n = 0;
+  for (int v : KdopKs::values) {
+    if (n) n += 2;
+    for (int x = v; x; x /= 10) ++n;
+  }
+  return n;
+}
+constexpr std::array<char, k_list_text_size() + 1> k_list_text() {
+  std::array<char, k_list_text_size() + 1> out{};
+  std::size_t at = 0;
+  for (int v : KdopKs::values) {
+    if (at) out[at++] = ',', out[at++] = ' ';
+    std::size_t digits = 0;
+    for (int x = v; x; x /= 10) ++digits;
+    for (std::size_t i = digits; i-- > 0; v /= 10) out[at + i] = char('0' + v % 10);
+    at += digits;
+  }
+  return out;
+}
+inline constexpr auto kKdopKsText = k_list_text();
+}  // namespace detail
+inline constexpr const char* kKdopKs = detail::kKdopKsText.data();
+
+/// A variant over Array<KDop<K>> for every K of the list, holding an empty Array of KDop<k> (the one dispatch
+/// from a run-time K to the k-DOP types); nullopt unless is_kdop_k(k).
+template <template <class> class Array>
+using KdopVariant = KdopKs::variant<Array>;
+template <template <class> class Array, std::size_t I = 0>
+std::optional<KdopVariant<Array>> empty_kdop_variant(int k) {
+  if constexpr (I == KdopKs::values.size()) {
+    return std::nullopt;
+  } else {
+    if (k == KdopKs::values[I]) return KdopVariant<Array>{Array<KDop<KdopKs::values[I]>>{}};
+    return empty_kdop_variant<Array, I + 1>(k);
+  }
+}
 
 template <int K>
 class KDop {
-  static_assert(is_kdop_k(K), "k-DOPs exist for K = 6, 14, 18, 26");
+  static_assert(is_kdop_k(K), "k-DOPs exist for the K of KdopKs");
 
  public:
   static constexpr int k = K;

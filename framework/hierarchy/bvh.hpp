@@ -20,8 +20,8 @@
 namespace ccdlab {
 
 /// The bounding volumes of a hierarchy's nodes (or of a mesh's faces), indexed like them. Refit and the swept
-/// volumes assign every element, so growing the array constructs nothing: constructing n-body's 292,959
-/// empty K = 26 node volumes first took 9.5 ms on one thread, before the parallel refit overwrote them all.
+/// volumes assign every element, so growing the array constructs nothing (an empty k-DOP per element, written
+/// on one thread, would cost more than the parallel refit that overwrites it).
 template <class BV>
 using BvArray = UnconstructedVector<BV>;
 

@@ -9,8 +9,8 @@
 namespace ccdlab {
 
 /// One face to place: its box centroid, its id, and where its box is in the build's face_boxes. 32 bytes: the
-/// splits move items around (median selection moves each item a few times per level), and carrying the box
-/// itself made an item 80 bytes and the median build 1.3-1.4x slower (rod-twist, n-body).
+/// splits move items around (median selection moves each item a few times per level), so an item stays small
+/// and points at its box instead of carrying it.
 struct BuildItem {
   Vec3 centroid;
   Index face;

@@ -1,5 +1,5 @@
 #pragma once
-// The 4-wide view of a binary BVH (issue 9, item 4): every inner node lists its (up to) four grandchildren —
+// The 4-wide view of a binary BVH: every inner node lists its (up to) four grandchildren —
 // a child that is a leaf stands for itself — and keeps their k-DOPs side by side, one SIMD lane per child, so a
 // traversal tests one k-DOP against all four with a compare per axis instead of walking two levels of the
 // binary tree (the collapse of a binary BVH into a 4-ary one, as in Embree's BVH4; Wald et al., "Getting rid
@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "framework/hierarchy/bvh.hpp"
-#include "framework/hierarchy/end_boxes.hpp"
+#include "framework/swept/end_boxes.hpp"
 #include "framework/util/uninitialized_vector.hpp"
 
 #if defined(__SSE2__)
@@ -27,9 +27,8 @@
 
 namespace ccdlab {
 
-/// bv.width when a config does not say: the 4-wide view. On a CPU with AVX-512 its lane-pair walk makes the traversal
-/// 2.2–3.2× faster than the binary walk and the steady-state step at two threads 1.07–1.36× (docs/wide-bvh.md).
-/// Elsewhere its SSE2 walk costs about what the binary walk does; `bv.width: 2` is the binary BVTT.
+/// bv.width when a config does not say: the 4-wide view. With 512-bit vectors its lane-pair walk is well ahead of the
+/// binary walk; with SSE2 it costs about what the binary walk does (docs/wide-bvh.md). `bv.width: 2` is the binary BVTT.
 inline constexpr int kDefaultBvhWidth = 4;
 /// The widths a traversal can read: the one rule every config, CLI flag and binding checks bv.width against.
 inline constexpr bool is_bvh_width(int w) { return w == 2 || w == 4; }
@@ -51,8 +50,8 @@ struct WideLayout {
   struct Lanes : LaneIds {
     std::array<Index, kWidth> node;
   };
-  // The arrays are large (rod-twist: 7.7 MB) and cut on a run's first step: in huge pages (UninitializedVector).
-  // In 4 KiB pages, their first touches made cutting rod-twist's layout take 68 ms instead of 4.
+  // The arrays are large and cut on a run's first step: in huge pages (UninitializedVector), where their first
+  // touches cost one fault per 2 MiB instead of one per 4 KiB.
   std::uint64_t version = ~0ull;  ///< the topology version it was cut from
   UninitializedVector<Index> slot;  ///< per node: its wide node, or ~face (< 0) for a leaf
   /// Per wide node: the grandchildren (a leaf child stands for itself). One more record follows the inner

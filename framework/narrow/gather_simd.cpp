@@ -2,7 +2,7 @@
 // 32-byte records in one vector, one lane permutation to the six VF pairs and one to eight of the nine EE
 // pairs (min and max by swapping neighbouring lanes), the owned ones first (the lanes each combination of owner
 // bits picks are tabled), each vector stored whole.
-// About 30 instructions a candidate against ~80 for the plain loop, which was bound by them (perf, rod-twist).
+// Far fewer instructions a candidate than the plain loop, which is bound by them.
 // AVX2 does the same with two 256-bit output vectors per kind, each lane permuted from either record and
 // blended. The same pairs in the same order as the plain loop (a test compares them on every target). Other
 // targets return false and the caller runs the plain loop.

@@ -5,6 +5,7 @@
 #include <bit>
 #include <chrono>
 
+#include "framework/narrow/kdop_filter.hpp"
 #include "framework/narrow/proximity_filter.hpp"
 #include "framework/narrow/split_filter.hpp"
 #include "framework/narrow/triangle_filter.hpp"
@@ -16,8 +17,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// What each stage costs a pair it receives, in ns on the 2-core AVX-512 machine (docs/narrow-phase.md, the
-/// stage tables: the ratios are what matter, and they hold on AVX2 within ~1.5×).
+/// What each stage costs a pair it receives, in ns, from docs/narrow-phase.md's stage tables: only the ratios
+/// matter to the rule, and they move little between SIMD targets.
 struct StageNs {
   static constexpr double gather = 5;       ///< per candidate gathered
   static constexpr double frames = 4;       ///< stage 0's float frames and face boxes, per face
@@ -31,9 +32,8 @@ struct StageNs {
 /// The candidates carry the orphans (Representatives::append_pairs) in a step expected to gather at most this
 /// many candidates per orphan: the last step's candidates, less the share stage 0 culled when it last ran if it
 /// runs in this one. A gathered candidate then checks two signatures, now and then reads a list, and brings the
-/// orphans it carries into the batch (rod-twist: 731K candidates carry 174K orphans); an orphan left in the set
-/// costs its stage 1 and, when that keeps it, stages 2–4 (docs/narrow-phase.md, "The candidates carry the
-/// orphans": rod-twist, 0.76 candidates an orphan, lost; n-body, 0.19, gained). A rule per step from whole-step
+/// orphans it carries into the batch; an orphan left in the set costs its stage 1 and, when that keeps it,
+/// stages 2–4 (docs/narrow-phase.md, "The candidates carry the orphans"). A rule per step from whole-step
 /// counts, as stage 0's.
 constexpr double kCarryPays = 0.25;
 std::uint64_t ns_since(Clock::time_point t) {
@@ -50,7 +50,7 @@ bool counted(const CcdHit& hit, std::uint64_t& tests, std::uint64_t& contacts, N
 }
 
 /// Keeps the pairs whose keep flag is set, in order. Branch-free: the flags are close to random, and a
-/// mispredicted branch per pair cost more than the stage that set them (perf, n-body).
+/// mispredicted branch per pair costs more than the stage that set them.
 template <class Pairs>
 void compact(Pairs& pairs, const std::uint8_t* keep) {
   std::size_t j = 0;
@@ -180,12 +180,12 @@ void NarrowPhase::gather_orphans(std::span<const VertexFacePair> vf, std::span<c
   std::uint8_t keep[kPiece];
   for (std::size_t b = 0; b < vf.size(); b += kPiece) {
     const auto piece = vf.subspan(b, std::min(kPiece, vf.size() - b));
-    bounds_->vf_keep_coarse(mesh_, piece, keep);
+    vf_keep_coarse(*bounds_, mesh_, piece, keep);
     append_kept(piece, keep, batch.vf);
   }
   for (std::size_t b = 0; b < ee.size(); b += kPiece) {
     const auto piece = ee.subspan(b, std::min(kPiece, ee.size() - b));
-    bounds_->ee_keep_coarse(mesh_, piece, keep);
+    ee_keep_coarse(*bounds_, mesh_, piece, keep);
     append_kept(piece, keep, batch.ee);
   }
   c.vf_pairs += vf.size();
@@ -217,14 +217,14 @@ void NarrowPhase::run(NarrowScratch& scratch, Contacts& out, NarrowCounters& c, 
     // One pair at a time: the 26-DOP test, then the tester.
     const auto t = Clock::now();
     for (const VertexFacePair& p : batch.vf) {
-      if (cull && !bounds_->vf_may_touch(p.v, mesh_.face(p.f))) {
+      if (cull && !vf_may_touch(*bounds_, p.v, mesh_.face(p.f))) {
         ++c.kdop_culled;
         continue;
       }
       test_vf(p.v, p.f, out, c);
     }
     for (const EdgeEdgePair& p : batch.ee) {
-      if (cull && !bounds_->ee_may_touch(mesh_.edge(p.a), mesh_.edge(p.b))) {
+      if (cull && !ee_may_touch(*bounds_, mesh_.edge(p.a), mesh_.edge(p.b))) {
         ++c.kdop_culled;
         continue;
       }
@@ -249,11 +249,11 @@ void NarrowPhase::cull_kdop(NarrowScratch& scratch, NarrowCounters& c, bool coar
   const std::size_t nvf = batch.vf.size(), n = nvf + batch.ee.size();
   scratch.keep.resize(n);
   if (coarse) {
-    bounds_->vf_keep_coarse(mesh_, batch.vf, scratch.keep.data());
-    bounds_->ee_keep_coarse(mesh_, batch.ee, scratch.keep.data() + nvf);
+    vf_keep_coarse(*bounds_, mesh_, batch.vf, scratch.keep.data());
+    ee_keep_coarse(*bounds_, mesh_, batch.ee, scratch.keep.data() + nvf);
   } else {
-    bounds_->vf_keep(mesh_, batch.vf, scratch.keep.data());
-    bounds_->ee_keep(mesh_, batch.ee, scratch.keep.data() + nvf);
+    vf_keep(*bounds_, mesh_, batch.vf, scratch.keep.data());
+    ee_keep(*bounds_, mesh_, batch.ee, scratch.keep.data() + nvf);
   }
   compact(batch, scratch.keep);
   c.kdop_culled += n - batch.vf.size() - batch.ee.size();

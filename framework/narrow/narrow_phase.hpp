@@ -19,7 +19,7 @@
 
 #include "framework/narrow/earliest_cut.hpp"
 #include "framework/narrow/feature_batch.hpp"
-#include "framework/narrow/feature_bounds.hpp"
+#include "framework/swept/feature_bounds.hpp"
 #include "framework/narrow/narrow_counters.hpp"
 #include "framework/narrow/representatives.hpp"
 #include "framework/primitive/tester.hpp"
@@ -40,9 +40,8 @@ enum class OrphanCarry { when_it_pays, always, never };
 /// smaller in the last step that ran it than in the last step that did not (docs/narrow-phase.md, "End boxes
 /// where they pay, stage 0 by the work it saves"). Counted, not timed, and from whole steps, so that every schedule decides alike and every
 /// work counter is independent of how the candidates are cut into chunks (schedulers, threads, slices). What a
-/// culled candidate saves varies 4× between real steps at the same cull rate — its feature pairs die in stage 1
-/// on rod-twist, but reach the costly stage 3 on n-body once end boxes have dropped the easy candidates — so no
-/// fixed cull rate decides. Stage 0 runs until a step without it has been measured (step 3), then, every
+/// culled candidate saves differs between real steps at the same cull rate — its feature pairs may die in stage 1
+/// or reach the costly stage 3 — so no fixed cull rate decides. Stage 0 runs until a step without it has been measured (step 3), then, every
 /// kRemeasure steps, one step with it (2 mod 16) and one without (3 mod 16): after the end boxes' measuring
 /// steps (0 and 1 mod 16, CcdPipeline), so that both see candidates of the same kind.
 class TriangleStageRule {
@@ -65,7 +64,7 @@ class TriangleStageRule {
 
 struct NarrowOptions {
   NarrowMode mode = NarrowMode::batched;
-  RepresentativeRule representative = RepresentativeRule::fixed;  // measured faster with batched culling (docs/performance.md)
+  RepresentativeRule representative = RepresentativeRule::fixed;  // the faster with batched culling (docs/narrow-phase.md)
   OrphanCarry carry_orphans = OrphanCarry::when_it_pays;
 };
 
@@ -98,7 +97,7 @@ class NarrowPhase {
   /// keeps (`cull = false`: every candidate's, as the ownership tests record them).
   void gather(std::span<const FacePair> candidates, NarrowScratch& scratch, NarrowCounters& c, bool cull = true) const;
   /// Appends a piece of the orphan set to an empty `batch`. Batched mode runs stage 1's coarse test here, on the
-  /// set where it lies, and copies only the pairs it keeps (a tenth on rod-twist), counting them as run() would.
+  /// set where it lies, and copies only the pairs it keeps, counting them as run() would.
   void gather_orphans(std::span<const VertexFacePair> vf, std::span<const EdgeEdgePair> ee, FeatureBatch& batch,
                       NarrowCounters& c) const;
   /// Culls and tests the pairs of `batch` (consumed: it holds the survivors afterwards); appends contacts.

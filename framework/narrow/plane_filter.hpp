@@ -23,7 +23,7 @@
 
 #include "framework/geometry/vec.hpp"
 #include "framework/mesh/tri_mesh.hpp"
-#include "framework/narrow/frame_points.hpp"
+#include "framework/swept/frame_points.hpp"
 #include "framework/primitive/feature_pairs.hpp"
 #include "framework/primitive/tester.hpp"
 #include "framework/util/uninitialized_vector.hpp"

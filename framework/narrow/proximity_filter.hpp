@@ -2,8 +2,7 @@
 // Stage 4 of the batched narrow phase: the features' distance on the windows stage 3 left open.
 // A pair that reaches it may have f = 0 in a window [w/16, (w+1)/16] where the features' boxes overlap: the
 // planes (lines) meet there while the features are near. Most such pairs still never touch: edges whose lines
-// cross beyond their ends, a vertex passing a face's plane beside it — on rod-twist 32K of the 40K pairs that
-// reached the tester after stage 3 (docs/narrow-phase.md, "Stage 4").
+// cross beyond their ends, a vertex passing a face's plane beside it (docs/narrow-phase.md, "Stage 4").
 //
 // In stage 2's moving frame the relative motion is linear, and every point of a feature moves with a convex
 // combination of its corners' velocities, so the distance d(t) between the features changes no faster than
@@ -18,7 +17,7 @@
 //   EE (edge {0, b}, edge {a, a + c}): ±(b × c), the lines' common normal (both closest points inside), and each
 //       of the four endpoints against the other edge (a closest point at an endpoint).
 // So the bound is the distance itself up to rounding, with no branch: all lanes of a vector run the same
-// operations (the plain version was one branchy closest-point query per window, ~95 ns a row on rod-twist).
+// operations, where a plain closest-point query per window branches on which feature is closest.
 // A zero direction (parallel edges, a degenerate face) just offers no bound. When gap − S·h exceeds the
 // reach, no contact is possible in the window; when every open window is proven, the pair is dropped.
 // Rounding: positions at m, the projections and the columns' own rounding are covered by 128u·M (M = the

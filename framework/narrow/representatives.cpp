@@ -88,7 +88,7 @@ void Representatives::build_carried_orphans() {
 void Representatives::append_owned(std::span<const FacePair> candidates, UninitializedVector<VertexFacePair>& vf,
                                    UninitializedVector<EdgeEdgePair>& ee, bool simd) const {
   // for_each_pair's fixed rule without its branches: every slot is written, the end advances by the owner bit
-  // (the bits are close to random, and a mispredicted push_back per pair cost more than the pair; perf, n-body).
+  // (the bits are close to random, so a branch per pair mispredicts half the time and costs more than the pair).
   const std::size_t vf_begin = vf.size(), ee_begin = ee.size();
   vf.resize(vf_begin + 6 * candidates.size() + 8);  // + 8: the SIMD version stores whole vectors
   ee.resize(ee_begin + 9 * candidates.size() + 8);

@@ -36,8 +36,8 @@ namespace ccdlab {
 enum class RepresentativeRule { fixed, first_free };
 
 /// Face `other`'s two bits in a carrier's 64-bit signature (a Bloom filter: Representatives::carried_bits_):
-/// a candidate reads a face's list of carried orphans only when both are set. With ~10 others a face (n-body),
-/// one bit sent 5.8% of the lookups to a list (34K a step), nearly all to one that did not hold the face. A
+/// a candidate reads a face's list of carried orphans only when both are set (one bit sends too many lookups to
+/// a list that does not hold the face). A
 /// carrier's others lie two rings around it, at nearby ids, so the bits come from a multiplicative hash, not
 /// from the id's low bits.
 constexpr std::uint64_t carried_bits(Index other) {
@@ -66,8 +66,8 @@ struct CarriedOrphan {
   Index b;
 };
 
-/// The EE pair of edges x and y, smaller id first, without a branch (g++ made std::min/max jumps here, taken at
-/// random: perf, rod-twist). Ids are non-negative int32, so y − x cannot overflow; d = min(0, y − x).
+/// The EE pair of edges x and y, smaller id first, without a branch (g++ makes std::min/max jumps here, taken at
+/// random). Ids are non-negative int32, so y − x cannot overflow; d = min(0, y − x).
 constexpr EdgeEdgePair ordered_edge_pair(Index x, Index y) {
   const Index diff = y - x, d = diff & (diff >> 31);
   return {x + d, y - d};
@@ -181,8 +181,7 @@ Representatives::Representatives(const TriMesh& mesh, RepresentativeRule rule, P
     owners_ = assign_owners(mesh);
     orphans_ = build_orphan_set(mesh, owners_, self_collision);
     // One large (huge-page) allocation even for a small mesh: in 4 KiB pages the records cost a fault per 128
-    // faces and took the freed memory the step's first arrays reuse otherwise (cloth-funnel, one-step runs:
-    // narrow 1.6 -> 3.1 ms and build +1.5 ms, back to 1.3 and -1.9 with this).
+    // faces and take the freed memory the step's first arrays would reuse otherwise.
     records_.reserve(std::max(std::size_t(mesh.num_faces()), kLargeAllocation / sizeof(GatherRecord)));
     records_.resize(std::size_t(mesh.num_faces()));
     for (Index f = 0; f < mesh.num_faces(); ++f) {

@@ -20,9 +20,9 @@
 
 namespace ccdlab {
 
-/// 2^levels windows: sixteenths for the final word; halves first, as a cheap pass that settles most pairs
-/// (n-body: halves drop 1.27M of the 1.92M pairs stage 2 keeps, at a fifth of the cost of sixteenths; the
-/// sixteenths then see only the rest). Only these two are compiled.
+/// 2^levels windows: sixteenths for the final word; halves first, as a cheap pass that settles most pairs at a
+/// fraction of the sixteenths' cost (docs/narrow-phase.md); the sixteenths then see only the rest. Only these two
+/// are compiled.
 constexpr int kSplitLevels = 4;
 constexpr int kSplitCoarseLevels = 1;
 
@@ -31,8 +31,8 @@ constexpr int kSplitCoarseLevels = 1;
 /// proven (bit w: window w), what stage 4 (proximity_filter.hpp) looks at. Runs on the best SIMD target of this CPU.
 /// `halves` (sixteenths only, with `open`; may be `open` itself): the open bits the halves pass left for each
 /// row. The sixteenths of a half it proved stay closed (a proof for a window holds on every part of it), and a
-/// vector whose rows each have one open half computes that half's eight windows only (of the rows that reach
-/// the sixteenths, 99% have one open half on n-body, 90% on rod-twist).
+/// vector whose rows each have one open half computes that half's eight windows only (most rows that
+/// reach the sixteenths have one open half).
 void split_filter(const PlaneBatch& plane, std::size_t begin, std::size_t end, bool vf, std::uint8_t* keep,
                   int levels = kSplitLevels, std::uint16_t* open = nullptr, const std::uint16_t* halves = nullptr);
 

@@ -253,8 +253,7 @@ HWY_INLINE V GapFactor(D d, const Corners<V>& c, float abs_reach, float rel_reac
   return GapFactorOf(d, extent, abs_reach, rel_reach, error);
 }
 
-/// Two passes, so that the costly axes see only what the cheap ones leave (n-body 18%, the simulated cloth_ball
-/// 4%): x, y and z from the faces' boxes (a line a face, no arithmetic but the comparisons) on every candidate,
+/// Two passes, so that the costly axes see only what the cheap ones leave: x, y and z from the faces' boxes (a line a face, no arithmetic but the comparisons) on every candidate,
 /// then the other axes on the survivors, kBlock at a time, from their corners.
 std::size_t TriangleFilter(const std::int32_t* pairs, const std::int32_t* faces, const float* x01, const float* boxes,
                            std::size_t n, float abs_reach, float rel_reach, float error, std::uint8_t* keep,

@@ -13,8 +13,7 @@
 // The axes, cheapest first: the 26-DOP's thirteen (x, y, z, x ± y, x ± z, y ± z, x + y ± z, x − y + z,
 // −x + y + z: the projections are sums of coordinates), then each face's normal at both ends, B0×C0 + B1×C1
 // (B, C its edges from its first corner). Any axis is valid. The swept volumes the traversal tested are unions
-// over the step; at each end the two faces are often far apart (99.99% of the simulated cloth_ball's candidates,
-// 94% of n-body's: docs/narrow-phase.md). x, y and z run first on every candidate, from each face's box at both
+// over the step; at each end the two faces are often far apart (docs/narrow-phase.md counts how often). x, y and z run first on every candidate, from each face's box at both
 // ends (FloatFaceBoxes: a line a face); the other axes only on what they leave. On x, y and z a projection is a
 // coordinate, exact; on the others points are taken relative to one corner (f's first at t0), so the rounding
 // scales with the pair's size, not with the scene's.
@@ -39,7 +38,7 @@
 #include <span>
 
 #include "framework/geometry/vec.hpp"
-#include "framework/narrow/frame_points.hpp"
+#include "framework/swept/frame_points.hpp"
 #include "framework/mesh/tri_mesh.hpp"
 #include "framework/primitive/tester.hpp"
 #include "framework/traversal/candidates.hpp"
@@ -52,8 +51,8 @@ namespace ccdlab {
 /// a vector stops at the first axis that culls all its lanes. Returns how many candidates x, y and z (from the
 /// faces' boxes) left for the second pass, the costly one (NarrowPhase's stage-0 rule counts it). Without
 /// `box_pass` every candidate goes to the second pass (x, y and z untested, which only culls less): for
-/// candidates the traversal's end boxes have already tested on x, y and z (framework/hierarchy/end_boxes.hpp),
-/// where the box pass culls next to nothing (n-body: none of 806K) and `frames` need no face boxes.
+/// candidates the traversal's end boxes have already tested on x, y and z (framework/swept/end_boxes.hpp),
+/// where the box pass culls next to nothing and `frames` need no face boxes.
 std::size_t triangle_filter(std::span<const FacePair> candidates, const Face* faces, const FloatFrames& frames,
                             CullReach reach, std::uint8_t* keep, bool box_pass = true);
 

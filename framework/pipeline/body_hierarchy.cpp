@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include "framework/pipeline/swept_volumes.hpp"
+#include "framework/swept/feature_bounds.hpp"
 #include "framework/util/memory.hpp"
 
 namespace ccdlab {
@@ -76,7 +76,7 @@ void BodyHierarchy::refit(const FeatureBounds& swept_dops, std::optional<double>
         using BV = typename std::decay_t<decltype(node_bvs)>::value_type;
         node_bvs.resize(bvh.nodes.size());  // uninitialised: the leaves' pass touches every page first, in parallel
         // The leaves first, in node order: their faces and vertex 26-DOPs are scattered reads, which the CPU
-        // overlaps across independent iterations (a fused bottom-up sweep measured slower: docs/pipeline.md, §2).
+        // overlaps across independent iterations (a fused bottom-up sweep is slower: docs/pipeline.md, §2).
         const SweptFaceBv<BV> swept{mesh_, swept_dops};
         const bool ends = settings_.end_boxes && end_reach;
         if (ends) node_ends_.resize(bvh.nodes.size());

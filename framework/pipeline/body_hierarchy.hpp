@@ -2,7 +2,7 @@
 // Stage 2 of a step (design.md): one body's bounding volume hierarchy across the steps of a run.
 //   build            first step: top-down over the faces' swept boxes (the HierarchyBuilder), then the
 //                    restructuring units (disjoint sub-trees, independent of the thread count)
-//   refit            every step: the leaves' k-DOPs cut from the swept volumes (swept_volumes.hpp), then
+//   refit            every step: the leaves' k-DOPs cut from the swept volumes (framework/swept/), then
 //                    bottom-up along the refit plan
 //   restructure      when on: rebuilds the sub-trees whose quality degraded (each one a new topology version)
 //   follow_topology  whenever the topology version changed (first step, restructuring): the 4-wide view and
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "framework/hierarchy/bvh.hpp"
-#include "framework/narrow/feature_bounds.hpp"
+#include "framework/swept/feature_bounds.hpp"
 #include "framework/traversal/normal_cones.hpp"
 #include "framework/traversal/scheduler.hpp"
 

@@ -2,6 +2,7 @@
 
 #include "framework/primitive/feature_pairs.hpp"
 #include "framework/narrow/narrow_phase.hpp"
+#include "framework/swept/feature_bounds.hpp"
 
 namespace ccdlab {
 
@@ -45,6 +46,35 @@ Contacts brute_force_contacts(const TriMesh& mesh, const CollisionRules& rules, 
   narrow.run(scratch, contacts, counters, box_cull);
   sort_contacts(contacts);
   return contacts;
+}
+
+void compute_face_bvs(const TriMesh& mesh, const Positions& x0, const Positions& x1, double thickness, AnyBvs& out,
+                      int threads, PhaseTrace* trace) {
+  PhaseTrace unused;
+  FeatureBounds vertex_dops;
+  vertex_dops.update(x0, x1, thickness, threads, trace ? *trace : unused);
+  std::visit(
+      [&](auto& bvs) {
+        using BV = typename std::decay_t<decltype(bvs)>::value_type;
+        bvs.resize(mesh.num_faces());
+        const SweptFaceBv<BV> swept{mesh, vertex_dops};
+        parallel_chunks(std::size_t(mesh.num_faces()), kFaceChunk, threads, trace ? *trace : unused,
+                        [&](std::size_t b, std::size_t e, int) {
+                          for (std::size_t f = b; f < e; ++f) bvs[f] = swept(Index(f));
+                        });
+      },
+      out);
+}
+
+std::vector<EndBoxes> compute_face_end_boxes(const TriMesh& mesh, const Positions& x0, const Positions& x1,
+                                             double thickness, const CullReach& reach) {
+  PhaseTrace unused;
+  FeatureBounds vertex_dops;
+  vertex_dops.update(x0, x1, thickness, 1, unused);
+  const double r = end_boxes_reach(reach.abs, reach.rel, vertex_dops.scene_extent()) / 2;
+  std::vector<EndBoxes> out(std::size_t(mesh.num_faces()));
+  for (Index f = 0; f < mesh.num_faces(); ++f) out[std::size_t(f)] = face_end_boxes(vertex_dops.frame_points(), mesh.face(f), r);
+  return out;
 }
 
 }  // namespace ccdlab

@@ -15,8 +15,7 @@ namespace {
 /// beside the k-DOPs) and 12 more compares per node pair the walk opens; they save the node pairs and the
 /// candidates they drop. They run in a step when the last step run with them kept at most kEndsKeepAtMost of
 /// the candidates of the last step run without them, and dropped at least kEndsDropPerFace candidates per face
-/// (docs/wide-bvh.md, "End boxes": n-body keeps 0.18 and drops 26 a face, cloth_ball 0.04 and 15: they pay;
-/// rod-twist keeps 0.84 and drops 1.4, the funnel 0.81 and 0.1: they cost). Both counts are measured again every
+/// (docs/wide-bvh.md, "End boxes", gives the thresholds' margins on the real steps). Both counts are measured again every
 /// kEndsRemeasure steps, one step without (step 0 mod 16), then one with (1 mod 16) when the step without had
 /// enough candidates to drop. Whole-step candidate counts are the same for every scheduler, width, thread count
 /// and slicing, so every schedule decides alike and reports the same counters.
@@ -68,9 +67,9 @@ std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std
   // start and a signature per face.
   const std::uint64_t orphans = std::uint64_t(orphan_pairs) * (sizeof(EdgeEdgePair) + sizeof(CarriedOrphan)) +
                                 f * (sizeof(std::uint32_t) + sizeof(std::uint64_t));
-  // The frames, and stage 0's float copy with its faces' boxes (framework/narrow/frame_points.hpp).
+  // The frames, and stage 0's float copy with its faces' boxes (framework/swept/frame_points.hpp).
   const std::uint64_t frames = 2 * v * sizeof(Vec3) + v * sizeof(FloatFramePoints) + f * sizeof(FloatFaceBoxes);
-  // End boxes: per node, and per wide node (framework/hierarchy/end_boxes.hpp).
+  // End boxes: per node, and per wide node (framework/swept/end_boxes.hpp).
   const std::uint64_t ends = end_boxes ? 2 * f * sizeof(EndBoxes) + (width == 4 ? f * sizeof(WideEnds) : 0) : 0;
   return bvh + wide + feature_boxes + ownership + orphans + frames + ends;
 }

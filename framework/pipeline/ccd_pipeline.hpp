@@ -1,7 +1,7 @@
 #pragma once
 // CcdPipeline: one CCD step, frame i → i+1, wired from the strategies chosen in the config (design.md). Its
 // stages, each in its own home, in data-flow order:
-//   1 swept volumes      every vertex's 26-DOP over the step (swept_volumes.hpp), read by stages 2 and 4
+//   1 swept volumes      every vertex's 26-DOP over the step (framework/swept/), read by stages 2 and 4
 //   2 body hierarchies   built once, refit, restructured, wide view, normal cones (body_hierarchy.hpp)
 //   3 traversal          the scheduler over every BVTT pass → candidate face pairs (traversal_driver.hpp)
 //   4 narrow phase       candidates and orphans → feature pairs → culling → tests, per thread (narrow_driver.hpp)
@@ -18,14 +18,14 @@
 #include "framework/pipeline/memory_budget.hpp"
 #include "framework/pipeline/narrow_driver.hpp"
 #include "framework/pipeline/step_result.hpp"
-#include "framework/pipeline/swept_volumes.hpp"
+#include "framework/swept/feature_bounds.hpp"
 #include "framework/pipeline/traversal_driver.hpp"
 #include "framework/primitive/tester.hpp"
 #include "framework/traversal/scheduler.hpp"
 
 namespace ccdlab {
 
-/// bv.end_boxes (framework/hierarchy/end_boxes.hpp): test the nodes' boxes at both ends of the step in every
+/// bv.end_boxes (framework/swept/end_boxes.hpp): test the nodes' boxes at both ends of the step in every
 /// step (`on`), never (`off`), or in the steps where they pay (`automatic`, YAML `auto`: CcdPipeline's rule).
 enum class EndBoxMode { off, on, automatic };
 [[nodiscard]] std::string_view to_string(EndBoxMode m);
@@ -44,7 +44,7 @@ struct PipelineStrategies {
   double restructure_threshold = 0;
   /// Continuous normal-cone culling of self tests (framework/traversal/normal_cones.hpp); thickness 0 only.
   bool normal_cones = false;
-  /// End boxes (framework/hierarchy/end_boxes.hpp): the traversal also drops node pairs apart on x, y or z at both
+  /// End boxes (framework/swept/end_boxes.hpp): the traversal also drops node pairs apart on x, y or z at both
   /// ends of the step. Needs the tester's reach (PrimitiveTester::cull_reach); off for a tester without one.
   EndBoxMode end_boxes = EndBoxMode::automatic;
   /// Bytes the process may hold resident during a step (0 = no limit): above the predicted need, a step streams
@@ -103,7 +103,7 @@ class CcdPipeline {
   /// Bytes of the pipeline's persistent data (topology, ownership, orphans, BVHs).
   [[nodiscard]] std::size_t memory_bytes() const;
 
-  /// Whether the hierarchies keep end boxes (framework/hierarchy/end_boxes.hpp): bv.end_boxes is not off, and
+  /// Whether the hierarchies keep end boxes (framework/swept/end_boxes.hpp): bv.end_boxes is not off, and
   /// the tester has a reach.
   [[nodiscard]] bool end_boxes_kept() const;
   /// Whether the last step's traversal tested them (always when `on` and kept; by the rule when `automatic`).

@@ -29,11 +29,11 @@ class MemoryBudget {
   /// Bytes one buffered candidate face pair costs: the pair in its thread's part of the list (CandidateList:
   /// the parts are read in place, never merged into a copy).
   static constexpr std::uint64_t kBytesPerCandidate = 8;
-  /// Resident bytes per triangle of a whole run before its first traversal (mesh, frames, BVH, boxes, orphans):
-  /// 845 on the n-body step, 118 MiB for 146,480 triangles (docs/reliability.md). A lower bound for the
-  /// refusal of a generated scene before it is made.
+  /// Resident bytes per triangle of a whole run before its first traversal (mesh, frames, BVH, boxes, orphans),
+  /// rounded down from the real steps' (docs/reliability.md). A lower bound for the refusal of a generated scene
+  /// before it is made.
   static constexpr std::uint64_t kResidentBytesPerTriangle = 800;
-  /// First-step guess of the candidates per triangle, before anything was measured (real cloth steps: 5–35).
+  /// First-step guess of the candidates per triangle, before anything was measured: above the real cloth steps'.
   static constexpr std::uint64_t kFirstStepCandidatesPerFace = 64;
 
   /// `forced_slices` > 0: stream every step in that many slices per pass, flushing every slice.

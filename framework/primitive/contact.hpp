@@ -64,7 +64,7 @@ struct Contact {
 };
 
 /// A step's contacts. Growing the list constructs nothing, and a large one lives in huge pages
-/// (framework/util/memory.hpp): n-body's 50K contacts, grown per thread and merged, were 2.3K fresh pages.
+/// (framework/util/memory.hpp): contacts grown per thread and merged would otherwise touch many fresh pages.
 using Contacts = UninitializedVector<Contact>;
 
 /// The unit normal of a contact at its time of contact, the features moving linearly from x_t0 to x_t1: the

@@ -1,6 +1,6 @@
 #pragma once
 // Built-in hard (degenerate) elementary queries with answers known by construction, for the accuracy ladder
-// (issue 4): contact exactly at t = 0 / t = 1, vertex on an edge or a vertex, coplanar motion, parallel and
+// (docs/results-accuracy.md): contact exactly at t = 0 / t = 1, vertex on an edge or a vertex, coplanar motion, parallel and
 // collinear edges, zero-length edges and zero-area faces, no motion, two roots in one step ("pass through and
 // back"), tangential (double-root) contact — each with ± perturbations of 2^-10, 2^-20, 2^-30, 2^-40 and one
 // ulp that flip or keep the answer. All coordinates are dyadic, so every perturbed query is exactly what it

@@ -20,8 +20,7 @@ namespace ccdlab {
 /// Depth-first traversal of the binary BVTT below `start`: each pair node visited is one BV test.
 /// The first child of a node is visited next without going through the stack (the others are pushed in
 /// reverse order, so the visiting order is plain pre-order DFS): a push and a pop per node were on the
-/// loop's critical path. The loop is bound by its instruction count (~90 per BV test before, callgrind on
-/// rod-twist), so the arrays are read through raw pointers held in registers (through the vectors, every
+/// loop's critical path. The loop is bound by its instruction count, so the arrays are read through raw pointers held in registers (through the vectors, every
 /// store to the stack or the output made the compiler reload them) and the stack's end is a plain pointer.
 template <class BV>
 void traverse_bvtt_binary(const BvttView<BV>& v, BvttNode start, std::vector<BvttNode>& stack, FacePairs& pairs,

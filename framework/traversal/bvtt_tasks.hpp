@@ -49,8 +49,8 @@ std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t wa
 }
 
 /// What a pass's tasks cost at the last step, so that the next step hands out the largest first (`phc`).
-/// Dynamic scheduling in the breadth-first order let a large task start last: on rod-twist (18 tasks of 0–7.7 ms
-/// at two threads) one thread then idled 1–5% of the traversal. A steady simulation cuts the same tasks step after
+/// Dynamic scheduling in the breadth-first order lets a large task start last, and one thread then idles while
+/// the other finishes it. A steady simulation cuts the same tasks step after
 /// step (same topology, same top of the BVTT) at similar costs, so last step's costs order this step's tasks
 /// (longest processing time first: the tail is the smallest tasks). Any other task list runs in its own order.
 /// The order changes which thread finds which candidates, never which are found.

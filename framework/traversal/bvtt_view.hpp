@@ -31,7 +31,7 @@ struct BvttView {
   const WideBvs<BV>* wide_a = nullptr;
   const WideLayout* wide_layout_b = nullptr;
   const WideBvs<BV>* wide_b = nullptr;
-  /// End boxes of both hierarchies' nodes (framework/hierarchy/end_boxes.hpp), or nullptr: then only the k-DOPs
+  /// End boxes of both hierarchies' nodes (framework/swept/end_boxes.hpp), or nullptr: then only the k-DOPs
   /// decide whether two nodes overlap.
   const EndBoxes* ends_a = nullptr;
   const EndBoxes* ends_b = nullptr;

@@ -48,7 +48,7 @@ int used_lanes(const WideBounds<BV>& r) {
 /// one (the larger side by size_measure, never a leaf); the candidates are the same (see wide_bvh.hpp).
 /// Written like the binary walk (raw pointers, candidates written in place). A pair visit reads the record it
 /// opens and the other side's k-DOP from the lane that holds it, in a record opened a moment ago: reading it
-/// from the binary array instead missed the cache (17% of the walk's samples, rod-twist). A hit lane whose own
+/// from the binary array instead misses the cache. A hit lane whose own
 /// visit would open the other side's record (the usual case: a lane is two levels smaller) is not pushed: that
 /// test is made at once, while both records are in cache. Same BV tests as pushing it, in another order.
 template <class BV>

@@ -25,11 +25,10 @@ using FacePairs = UninitializedVector<FacePair>;
 /// The candidates of a step, in parts: one per thread that found them (part 0 also takes what a serial
 /// traversal or the serial top of a split BVTT finds). The candidate list is their concatenation in part
 /// order; which part a pair lands in depends on the schedule, so nothing may depend on the order (the
-/// contacts are sorted at the end of the step). Why parts, and room reserved ahead (n-body, 4.6M pairs,
-/// 37 MB; docs/narrow-phase.md, "Memory touched once"):
-///   - merging the threads' lists into one copied 37 MB into fresh pages: ~7 ms of the 2-thread traversal;
-///   - a list that grows by doubling copies itself and first-touches about twice its final size: the
-///     1-thread traversal took 144 ms against 110 with the room reserved.
+/// contacts are sorted at the end of the step). Why parts, and room reserved ahead (docs/narrow-phase.md,
+/// "Memory touched once"):
+///   - merging the threads' lists into one copies every pair into fresh pages;
+///   - a list that grows by doubling copies itself and first-touches about twice its final size.
 /// clear() keeps the parts' memory for the next step. The pipeline does that while a step fits the memory
 /// limit with them resident (MemoryBudget::fits), and releases them otherwise, before planning the step.
 class CandidateList {
@@ -100,8 +99,7 @@ struct TraversalOutput {
   /// Optional; CcdPipeline sets it unless told to keep the candidates. A scheduler calls hand_over(tid)
   /// between two of its tasks: a part that holds hand_over_pairs or more goes to the consumer (the narrow
   /// phase, on the thread that found the pairs) and is emptied. The pairs are tested while still in cache,
-  /// and the list reuses a few hundred KiB instead of holding a whole step: n-body's 4.3M candidates were 8.4K
-  /// fresh pages, half of its 2-thread traversal on a VM where a page fault costs ~7 µs (docs/narrow-phase.md,
+  /// and the list reuses a few hundred KiB instead of holding a whole step in fresh pages (docs/narrow-phase.md,
   /// "Page faults, again"). What is left in the parts after collect() is the caller's.
   CandidateConsumer consumer;
   static constexpr std::size_t kHandOverPairs = std::size_t(1) << 14;  // 128 KiB: stays in L2

@@ -5,8 +5,8 @@
 /// node opens both sides at once: an inner side's record, or, for a leaf, the record that holds it (its home)
 /// restricted to that lane. One overlapping_lane_pairs gives the 16 lane pairs' answers; the pairs of two leaves
 /// are written as candidates (adjacency tested in SIMD on the lanes' vertex ids, WideLayout::LaneIds::vert) and the
-/// others pushed, each with one compress per 16 lanes — no branch on any answer, which is what made the other
-/// walks pay ~11 ns per BV test (docs/wide-bvh.md). Self nodes open into (L, L), (R, R), (L, R) as in the binary
+/// others pushed, each with one compress per 16 lanes — no branch on any answer, the branches that cost the other
+/// walks most per BV test (docs/wide-bvh.md). Self nodes open into (L, L), (R, R), (L, R) as in the binary
 /// BVTT, so normal-cone skips apply unchanged; (L, R) is pushed untested, since its visit tests L's lanes against
 /// R's anyway (a leaf pair under L × R overlaps only if L and R do). Same candidates as the binary walk
 /// (wide_bvh.hpp), in another order; a BV test is one lane pair of the restricted records.
@@ -55,7 +55,7 @@ CCDLAB_WALK_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode
         const BvhNode& A = na[ha];
         if (!A.is_leaf() && !(skip_root && skip_root[ha] >= 0)) {
           // (L, R) is pushed untested: testing it here culls few and reads the binary array, away from the
-          // records; its visit tests the lanes anyway (measured in docs/wide-bvh.md).
+          // records; its visit tests the lanes anyway (docs/wide-bvh.md).
           push(home_a[A.left], home_a[A.right], slot_a[A.left], slot_a[A.right]);
           push(A.right, A.right, -1, -1);
           ha = hb = A.left;

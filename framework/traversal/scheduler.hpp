@@ -13,13 +13,25 @@
 #include "framework/hierarchy/wide_bvh.hpp"
 #include "framework/traversal/bvtt.hpp"
 #include "framework/traversal/candidates.hpp"
+#include "framework/util/error.hpp"
 #include "framework/util/parallel.hpp"
 
 namespace ccdlab {
 
-using AnyBvs = std::variant<BvArray<KDop<6>>, BvArray<KDop<14>>, BvArray<KDop<18>>, BvArray<KDop<26>>>;
+/// A hierarchy's node bounds, whichever K it uses (KdopKs).
+using AnyBvs = KdopVariant<BvArray>;
 /// The 4-wide bounds of the same hierarchy (bv.width: 4), same alternative as its AnyBvs.
-using AnyWideBvs = std::variant<WideBvs<KDop<6>>, WideBvs<KDop<14>>, WideBvs<KDop<18>>, WideBvs<KDop<26>>>;
+using AnyWideBvs = KdopVariant<WideBvs>;
+
+/// An AnyBvs / AnyWideBvs holding an empty array of KDop<k>; throws Error unless is_kdop_k(k).
+inline AnyBvs make_bvs(int k) {
+  if (auto v = empty_kdop_variant<BvArray>(k)) return std::move(*v);
+  fail("bv.k: expected one of {}, got {}", kKdopKs, k);
+}
+inline AnyWideBvs make_wide_bvs(int k) {
+  if (auto v = empty_kdop_variant<WideBvs>(k)) return std::move(*v);
+  fail("bv.k: expected one of {}, got {}", kKdopKs, k);
+}
 
 /// One traversal pass of a step: a BVH against itself (self-collision) or against another body's BVH.
 /// `id` is stable across steps so stateful schedulers (e.g. a BVTT front) can keep per-pass data.
@@ -40,7 +52,7 @@ struct TraversalPass {
   const AnyWideBvs* wide_a = nullptr;
   const WideLayout* wide_layout_b = nullptr;
   const AnyWideBvs* wide_b = nullptr;
-  /// End boxes (framework/hierarchy/end_boxes.hpp) of both hierarchies' nodes, and of the wide records' lanes
+  /// End boxes (framework/swept/end_boxes.hpp) of both hierarchies' nodes, and of the wide records' lanes
   /// (width 4), or nullptr when the pipeline keeps none; the walks test them in the steps that set `test_ends`
   /// (the pipeline refits them in those steps only).
   const BvArray<EndBoxes>* ends_a = nullptr;

@@ -22,12 +22,10 @@ std::uint64_t minor_page_faults();
 
 /// Large arrays (node volumes, BVH nodes, build items and boxes, feature bounds, candidate lists: every
 /// UninitializedVector and UnconstructedVector, through GrowthAllocator) in transparent huge pages. A
-/// fresh 4 KiB page costs a fault on first touch, ~5–13 µs on some VMs (docs/narrow-phase.md, "Page faults,
-/// again"): the n-body step's 30 MB of node volumes were 7.4K faults, 60% of its swept-volume pass at 2
-/// threads; the BVH build's boxes, items and nodes were most of its time (rod-twist 2 threads: build 40 → 21 ms
-/// with them in huge pages). One 2 MiB page takes one fault. Allocations of kLargeAllocation bytes or more (1 MiB:
-/// zeroing one 2 MiB page costs less than 256 faults here, about the same on bare metal) are 2 MiB-aligned and
-/// marked MADV_HUGEPAGE (Linux; the kernel's THP setting decides, "never" turns it off); CCDLAB_HUGE_PAGES=off in
+/// fresh 4 KiB page costs a fault on first touch, microseconds on some VMs (docs/appendix-measurements.md), which
+/// can dominate a pass that writes each element once. One 2 MiB page takes one fault. Allocations of
+/// kLargeAllocation bytes or more (1 MiB: zeroing one 2 MiB page costs less than the 256 faults of 1 MiB in 4 KiB
+/// pages) are 2 MiB-aligned and marked MADV_HUGEPAGE (Linux; the kernel's THP setting decides, "never" turns it off); CCDLAB_HUGE_PAGES=off in
 /// the environment turns it off for the process (read once).
 constexpr std::size_t kLargeAllocation = std::size_t(1) << 20;
 /// True when an allocation of `bytes` goes through allocate_large (the same answer for the whole process).

@@ -1,7 +1,7 @@
 #pragma once
 // Rigid impact zones (Provot 1997; Bridson, Fedkiw & Anderson 2002, §7.4): ccd_contact's last resort, after
-// its impulse rounds and the inelastic projection (inelastic_projection.hpp); the built-in scenes at full size
-// never needed it at c2211f6, but only it guarantees an end. The motion x → p of a sub-step is checked with
+// its impulse rounds and the inelastic projection (inelastic_projection.hpp); the built-in scenes rarely need it, but only it
+// guarantees an end. The motion x → p of a sub-step is checked with
 // zero thickness; the vertices of every contact found are merged into zones (union–find; zones only grow
 // within a sub-step), and each zone then moves rigidly over the sub-step:
 //   - a zone with no scripted vertex keeps its linear and angular momentum: p_i = c + dt·v_c + R(dt·ω)(x_i − c),

@@ -11,8 +11,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// A rebuild's front, for the room its buffers get: entries per node pair seed and per leaf, above what the
-/// shared real steps and cloth_ball reach (docs/results-scheduling.md); a self seed grows into far more.
+/// A rebuild's front, for the room its buffers get: entries per node pair seed and per leaf, above what real
+/// steps reach (docs/results-scheduling.md); a self seed grows into far more.
 constexpr std::size_t kSeedGrowth = 8;
 constexpr std::size_t kRebuildEntriesPerLeaf = 8;
 /// Tasks of a rebuild step (see collect).

@@ -183,7 +183,7 @@ enum class Settled { apart, contact, undecided };
 /// Settles [a, b], a window where f may vanish with none of the query's contacts before a. A window classified
 /// `unknown` is halved, earliest half first, at most `depth` times: a window is often unknown only because the
 /// features cross each other's boundary somewhere in it, away from f's root, and a narrower window around the
-/// root is proven (n-body: most of the queries the algebra decided). `budget` caps the classifications a query
+/// root is proven (what spares most queries the algebra). `budget` caps the classifications a query
 /// spends.
 Settled settle(const interval_ccd::RelativeMotion& m, double a, double b, int depth, int& budget,
                std::optional<ExactTester::Decision>& out) {

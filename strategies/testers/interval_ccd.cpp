@@ -21,7 +21,7 @@ namespace {
 //    the dot product's sums: 2; nn − u − w: 2), so |computed − exact| ≤ γ₁₄·Σ|terms| ≤ 15u·a (Higham,
 //    "Accuracy and Stability of Numerical Algorithms", §3.1). The test uses 2⁻⁴⁷ = 64u·a, and treats
 //    a < 1e-250 (possible underflow) or a non-finite a as unknown.
-//    It is ~4× cheaper than interval arithmetic (two operations per operation, no min/max).
+//    It is cheaper than interval arithmetic (two operations per operation, no min/max).
 struct Bounded {
   double v = 0, a = 0;  // value; a ≥ Σ|terms| of the exact value (as computed)
   static constexpr double kError = 0x1p-47, kSmallest = 1e-250;

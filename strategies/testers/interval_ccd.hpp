@@ -32,7 +32,7 @@ struct RelativeMotion {
 };
 
 /// Fast certified test, in plain double with a forward error bound: true when f(t) = A·(B×C) provably keeps
-/// one sign on [0, 1] (then the features cannot touch). About 4× cheaper than `classify`; it decides most
+/// one sign on [0, 1] (then the features cannot touch). Much cheaper than `classify`; it decides most
 /// non-colliding pairs of a cloth step, so every zero-thickness tester runs it first.
 bool certainly_never_coplanar(const VertexFaceQuery& q);
 bool certainly_never_coplanar(const EdgeEdgeQuery& q);

@@ -138,7 +138,7 @@ TEST(Schedulers, IdenticalAnswersForEverySchedulerAndThreadCount) {
 }
 
 TEST(Schedulers, EndBoxesGiveEverySchedulerWidthAndThreadCountTheSameCandidates) {
-  // bv.end_boxes (framework/hierarchy/end_boxes.hpp) changes which node pairs every walk opens — the binary walk,
+  // bv.end_boxes (framework/swept/end_boxes.hpp) changes which node pairs every walk opens — the binary walk,
   // the task splits of phc and static, the binary and wide fronts, the SSE2 and lane-pair walks — but never the
   // leaf pairs they reach together, nor the contacts.
   const MeshSequence scene = small_scene();

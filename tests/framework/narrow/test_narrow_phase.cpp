@@ -14,6 +14,7 @@
 #include <memory>
 #include <string>
 
+#include "framework/narrow/kdop_filter.hpp"
 #include "framework/narrow/narrow_phase.hpp"
 #include "framework/narrow/proximity_filter.hpp"
 #include "framework/narrow/split_filter.hpp"
@@ -333,10 +334,10 @@ struct AllFeaturePairs {
   std::vector<std::uint8_t> flags(const TriMesh& mesh, const FeatureBounds& bounds, bool coarse) const {
     std::vector<std::uint8_t> out;
     for (const auto& p : vf)
-      out.push_back(coarse ? bounds.vf_may_touch_coarse(p.v, mesh.face(p.f)) : bounds.vf_may_touch(p.v, mesh.face(p.f)));
+      out.push_back(coarse ? vf_may_touch_coarse(bounds, p.v, mesh.face(p.f)) : vf_may_touch(bounds, p.v, mesh.face(p.f)));
     for (const auto& p : ee) {
       const Edge &a = mesh.edge(p.a), &b = mesh.edge(p.b);
-      out.push_back(coarse ? bounds.ee_may_touch_coarse(a, b) : bounds.ee_may_touch(a, b));
+      out.push_back(coarse ? ee_may_touch_coarse(bounds, a, b) : ee_may_touch(bounds, a, b));
     }
     return out;
   }
@@ -449,10 +450,10 @@ TEST(FeatureBounds, SimdKeepAgreesWithThePlainVersionOnEveryTarget) {
     EXPECT_LT(std::size_t(kept), expect.size() / 2);
     std::vector<std::uint8_t> keep(expect.size()), keep_coarse(expect.size());
     const std::size_t nvf = pairs.vf.size();
-    bounds.vf_keep(mesh, pairs.vf, keep.data());
-    bounds.ee_keep(mesh, pairs.ee, keep.data() + nvf);
-    bounds.vf_keep_coarse(mesh, pairs.vf, keep_coarse.data());
-    bounds.ee_keep_coarse(mesh, pairs.ee, keep_coarse.data() + nvf);
+    vf_keep(bounds, mesh, pairs.vf, keep.data());
+    ee_keep(bounds, mesh, pairs.ee, keep.data() + nvf);
+    vf_keep_coarse(bounds, mesh, pairs.vf, keep_coarse.data());
+    ee_keep_coarse(bounds, mesh, pairs.ee, keep_coarse.data() + nvf);
     EXPECT_EQ(keep, expect) << target;
     EXPECT_EQ(keep_coarse, expect_coarse) << target;
     if (first_coarse.empty()) first_coarse = keep_coarse;

@@ -134,7 +134,7 @@ TEST_P(Differential, ClothAgainstObstacleMatchesBruteForce) {
 }
 
 TEST_P(Differential, EndBoxesDropOnlyPairsApartAtBothEndsAndNoContact) {
-  // The same steps with end boxes on and off (framework/hierarchy/end_boxes.hpp): off, the candidates are exactly
+  // The same steps with end boxes on and off (framework/swept/end_boxes.hpp): off, the candidates are exactly
   // the overlapping face volumes; on, those less the pairs apart at both ends — some every step, since the
   // random motion moves faces across one another's boxes — and the contacts are the same.
   MeshData g = test::grid(9, 7);

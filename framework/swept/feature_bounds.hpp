@@ -1,9 +1,9 @@
 #pragma once
-// Stage 1 of the narrow phase: the swept 26-DOP of every vertex over the step, inflated by η/2. An edge's and a
-// face's are the union of their vertices' (exact: min/max of floats). A feature pair goes on only when the
-// two features' 26-DOPs overlap.
+// Stage 1 of a step (docs/pipeline.md): the swept 26-DOP of every vertex over the step, inflated by η/2, computed
+// once and read by the hierarchy (its leaves, face_dop) and by the narrow phase (its feature cull,
+// narrow/kdop_filter.hpp). An edge's and a face's 26-DOP are the union of their vertices' (exact: min/max of floats).
 //
-// Why this cull never changes the answer (the invariant that makes every representative rule, mode,
+// Why culling by these bounds never changes the answer (the invariant that makes every representative rule, mode,
 // scheduler and K report the same contacts):
 //   1. A pair whose features come within η during the step passes: the 26-DOPs contain the swept features
 //      (rounded outward as in kdop.hpp), and the midpoint of two points within η lies within η/2 of each.
@@ -15,14 +15,12 @@
 //      The same η/2 suffices for the hierarchy: triangles within η have points within η/2 of one midpoint.
 // Contacts are thus {tester hit} ∩ {feature 26-DOPs overlap}, a set no choice of strategy can change.
 //
-// Two copies of each vertex's 26-DOP, two tests (batched mode):
+// Two copies of each vertex's 26-DOP:
 //   - float, 13 minima then 13 maxima padded to 16 floats each (zero lanes never separate): 128 bytes, two
-//     cache lines. The test above, the definition; the batched narrow phase runs it last, on the few pairs
-//     stages 2–4 leave (NarrowPhase::run).
-//   - coarse, the same bounds mapped monotonically onto a 16-bit grid per axis: 64 bytes, one cache line, and a
-//     pair's test is a handful of integer SIMD operations. Stage 1 runs it on every pair. It keeps every pair
-//     the float test keeps (CoarseDop below), so running it first drops nothing the definition keeps; it keeps
-//     0.15% of what the float test drops (rod-twist), which stages 2–4 and the float test then drop.
+//     cache lines. The definition of the cull.
+//   - coarse, the same bounds mapped monotonically onto a 16-bit grid per axis: 64 bytes, one cache line. It
+//     keeps every pair the float test keeps (CoarseDop below), so a cull by it first drops nothing the
+//     definition keeps.
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -33,8 +31,7 @@
 
 #include "framework/geometry/kdop.hpp"
 #include "framework/mesh/tri_mesh.hpp"
-#include "framework/narrow/frame_points.hpp"
-#include "framework/primitive/feature_pairs.hpp"
+#include "framework/swept/frame_points.hpp"
 #include "framework/util/parallel.hpp"
 #include "framework/util/uninitialized_vector.hpp"
 
@@ -89,15 +86,15 @@ struct alignas(64) CoarseDop {
 static_assert(sizeof(CoarseDop) == 64 && PaddedDop::kAxes <= CoarseDop::kLanes);
 
 /// A vertex's swept 26-DOP over the step (the points p at t0 and q at t1), inflated by r: KDop<26>::grow then
-/// inflate, padded. The plain version (compiled beside the SIMD one, kdop_filter.cpp, with the same rounding
+/// inflate, padded. The plain version (compiled beside the SIMD one, vertex_dops_simd.cpp, with the same rounding
 /// flags); FeatureBounds::update runs the same operations in SIMD.
 PaddedDop swept_vertex_dop(const Vec3& p, const Vec3& q, double r);
 
 namespace detail {
-/// swept_vertex_dop of vertices [0, n) in SIMD (kdop_filter.cpp), the same floats; a vertex with a non-finite
+/// swept_vertex_dop of vertices [0, n) in SIMD (vertex_dops_simd.cpp), the same floats; a vertex with a non-finite
 /// coordinate takes the plain version.
 void swept_vertex_dops(const Vec3* x_t0, const Vec3* x_t1, std::size_t n, double r, PaddedDop* out);
-/// The coarse copy of n float 26-DOPs (SIMD, kdop_filter.cpp): per lane, g = (x − lo)·scale − offset.
+/// The coarse copy of n float 26-DOPs (SIMD, vertex_dops_simd.cpp): per lane, g = (x − lo)·scale − offset.
 void quantize_dops(const PaddedDop* in, CoarseDop* out, std::size_t n, const float* lo, const float* scale,
                    const float* offset);
 }  // namespace detail
@@ -121,8 +118,8 @@ class FeatureBounds {
     const PaddedDop &a = vertex_[f[0]], &b = vertex_[f[1]], &c = vertex_[f[2]];
     alignas(64) float lo[PaddedDop::kLanes], hi[PaddedDop::kLanes];
 #if defined(__SSE2__)
-    // Four lanes per instruction, no branch: plain std::min compiled to a compare-and-branch per axis, and
-    // the branches mispredicted on half the leaves (rod-twist's leaves took 87 ns each, 7 ms a step).
+    // Four lanes per instruction, no branch: plain std::min compiles to a compare-and-branch per axis, whose
+    // outcome is random from one leaf to the next.
     for (int i = 0; i < PaddedDop::kLanes; i += 4) {
       _mm_store_ps(lo + i, _mm_min_ps(_mm_min_ps(_mm_load_ps(a.min + i), _mm_load_ps(b.min + i)), _mm_load_ps(c.min + i)));
       _mm_store_ps(hi + i, _mm_max_ps(_mm_max_ps(_mm_load_ps(a.max + i), _mm_load_ps(b.max + i)), _mm_load_ps(c.max + i)));
@@ -139,54 +136,9 @@ class FeatureBounds {
     return KDop<K>::from_bounds(mins, maxs);
   }
 
-  /// Plain versions (scalar mode, tests).
-  [[nodiscard]] bool vf_may_touch(Index v, const Face& f) const {
-    const PaddedDop &p = vertex_[v], &a = vertex_[f[0]], &b = vertex_[f[1]], &c = vertex_[f[2]];
-    bool apart = false;
-    for (int i = 0; i < PaddedDop::kAxes; ++i) {
-      const float lo = std::min(std::min(a.min[i], b.min[i]), c.min[i]);
-      const float hi = std::max(std::max(a.max[i], b.max[i]), c.max[i]);
-      apart |= int(p.min[i] > hi) | int(lo > p.max[i]);
-    }
-    return !apart;
-  }
-  [[nodiscard]] bool ee_may_touch(const Edge& ea, const Edge& eb) const {
-    const PaddedDop &a0 = vertex_[ea[0]], &a1 = vertex_[ea[1]], &b0 = vertex_[eb[0]], &b1 = vertex_[eb[1]];
-    bool apart = false;
-    for (int i = 0; i < PaddedDop::kAxes; ++i) {
-      apart |= int(std::min(a0.min[i], a1.min[i]) > std::max(b0.max[i], b1.max[i])) |
-               int(std::min(b0.min[i], b1.min[i]) > std::max(a0.max[i], a1.max[i]));
-    }
-    return !apart;
-  }
-
-  /// The coarse test, plain: true whenever the float test above is (and for 0.15% of the pairs it drops).
-  [[nodiscard]] bool vf_may_touch_coarse(Index v, const Face& f) const {
-    const CoarseDop &p = coarse_[v], &a = coarse_[f[0]], &b = coarse_[f[1]], &c = coarse_[f[2]];
-    bool apart = false;
-    for (int i = 0; i < PaddedDop::kAxes; ++i) {
-      const int lo = std::min(std::min(a.min[i], b.min[i]), c.min[i]);
-      const int neg_hi = std::min(std::min(a.neg_max[i], b.neg_max[i]), c.neg_max[i]);
-      apart |= int(p.min[i] + neg_hi > 0) | int(lo + p.neg_max[i] > 0);
-    }
-    return !apart;
-  }
-  [[nodiscard]] bool ee_may_touch_coarse(const Edge& ea, const Edge& eb) const {
-    const CoarseDop &a0 = coarse_[ea[0]], &a1 = coarse_[ea[1]], &b0 = coarse_[eb[0]], &b1 = coarse_[eb[1]];
-    bool apart = false;
-    for (int i = 0; i < PaddedDop::kAxes; ++i) {
-      apart |= int(std::min(a0.min[i], a1.min[i]) + std::min(b0.neg_max[i], b1.neg_max[i]) > 0) |
-               int(std::min(b0.min[i], b1.min[i]) + std::min(a0.neg_max[i], a1.neg_max[i]) > 0);
-    }
-    return !apart;
-  }
-
-  /// SIMD over a batch (best target of this CPU): keep[i] = whether pair i passes; same answers as the plain
-  /// versions, float (vf_keep, ee_keep) or coarse (the _coarse ones).
-  void vf_keep(const TriMesh& mesh, std::span<const VertexFacePair> pairs, std::uint8_t* keep) const;
-  void ee_keep(const TriMesh& mesh, std::span<const EdgeEdgePair> pairs, std::uint8_t* keep) const;
-  void vf_keep_coarse(const TriMesh& mesh, std::span<const VertexFacePair> pairs, std::uint8_t* keep) const;
-  void ee_keep_coarse(const TriMesh& mesh, std::span<const EdgeEdgePair> pairs, std::uint8_t* keep) const;
+  /// Every vertex's float 26-DOP and its coarse copy, indexed by vertex id (the narrow phase's stage 1 reads them).
+  [[nodiscard]] const PaddedDop* dops() const { return vertex_.data(); }
+  [[nodiscard]] const CoarseDop* coarse_dops() const { return coarse_.data(); }
 
   static constexpr std::size_t kBytesPerVertex = sizeof(PaddedDop) + sizeof(CoarseDop) + sizeof(FramePoints);
   [[nodiscard]] std::size_t memory_bytes() const { return vertex_.size() * kBytesPerVertex; }
@@ -211,5 +163,17 @@ class FeatureBounds {
   UninitializedVector<FramePoints> points_;
   double extent_ = 0;
 };
+
+/// The swept k-DOP of face f over the step: the union of its vertices' swept 26-DOPs, inflated by half the
+/// thickness (FeatureBounds::face_dop: the one definition, shared by the hierarchy's leaves and the references).
+template <class BV>
+struct SweptFaceBv {
+  const TriMesh& mesh;
+  const FeatureBounds& bounds;
+  BV operator()(Index f) const { return bounds.face_dop<BV::k>(mesh.face(f)); }
+};
+
+/// Faces per task wherever faces are swept or boxed: large enough to amortise a hand-out, small enough to balance.
+inline constexpr std::size_t kFaceChunk = 2048;
 
 }  // namespace ccdlab

@@ -1,4 +1,4 @@
-#include "framework/narrow/feature_bounds.hpp"
+#include "framework/swept/feature_bounds.hpp"
 
 #include <cmath>
 

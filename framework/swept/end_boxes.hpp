@@ -14,15 +14,15 @@
 //
 // The union of the two boxes on an axis is the swept box, so boxes apart at both ends is a weaker condition than
 // the swept k-DOP's x, y, z axes being apart: the test adds to the k-DOP's, never replaces it. It culls pairs that
-// pass one another's positions during the step only on different axes, or not at all: the n-body step's
-// bouncing balls (most swept-overlapping pairs are apart at both ends), much less a twisting rod.
+// pass one another's positions during the step only on different axes, or not at all: bodies bouncing apart
+// far more than a twisting rod, whose faces overlap their neighbours' at both ends.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 
 #include "framework/mesh/tri_mesh.hpp"
-#include "framework/narrow/frame_points.hpp"
+#include "framework/swept/frame_points.hpp"
 
 namespace ccdlab {
 

@@ -1,11 +1,11 @@
-// End boxes (framework/hierarchy/end_boxes.hpp): each float bound holds its exact bound moved out by r, however the
+// End boxes (framework/swept/end_boxes.hpp): each float bound holds its exact bound moved out by r, however the
 // coordinates round; boxes apart at both ends on one axis keep every point pair of the step farther than 2r; and
 // the wide walks' lane tests answer as the scalar test does, lane by lane.
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "framework/hierarchy/end_boxes.hpp"
+#include "framework/swept/end_boxes.hpp"
 #include "framework/hierarchy/wide_bvh.hpp"
 #include "framework/traversal/wide_overlap.hpp"
 
