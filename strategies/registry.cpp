@@ -105,35 +105,41 @@ const EffectRegistry& effect_registry() {
   static const EffectRegistry r = [] {
     EffectRegistry r("effect");
     using P = ParamType;
+    const GravityParams gravity;
     r.add({"gravity", "constant acceleration of every free vertex",
-           {{"gx", P::real, 0.0, "m/s^2", -1e3, 1e3}, {"gy", P::real, -9.81, "m/s^2", -1e3, 1e3}, {"gz", P::real, 0.0, "m/s^2", -1e3, 1e3}},
+           {{"gx", P::real, gravity.g.x(), "m/s^2", -1e3, 1e3}, {"gy", P::real, gravity.g.y(), "m/s^2", -1e3, 1e3},
+            {"gz", P::real, gravity.g.z(), "m/s^2", -1e3, 1e3}},
            make_gravity});
-    r.add({"damping", "velocities decay as exp(-rate t)", {{"rate", P::real, 0.5, "1/s", 0, 1e6}}, make_damping});
+    r.add({"damping", "velocities decay as exp(-rate t)", {{"rate", P::real, DampingParams{}.rate, "1/s", 0, 1e6}}, make_damping});
+    const WindParams wind;
     r.add({"wind", "drag towards a wind velocity on each triangle's normal, with seeded gusts",
-           {{"vx", P::real, 3.0, "m/s", -1e3, 1e3}, {"vy", P::real, 0.0, "m/s", -1e3, 1e3}, {"vz", P::real, 0.0, "m/s", -1e3, 1e3},
-            {"drag", P::real, 1.0, "drag coefficient (per unit area and mass)", 0, 1e6},
-            {"turbulence", P::real, 0.3, "gust amplitude relative to the wind speed", 0, 10}},
+           {{"vx", P::real, wind.velocity.x(), "m/s", -1e3, 1e3}, {"vy", P::real, wind.velocity.y(), "m/s", -1e3, 1e3},
+            {"vz", P::real, wind.velocity.z(), "m/s", -1e3, 1e3},
+            {"drag", P::real, wind.drag, "drag coefficient (per unit area and mass)", 0, 1e6},
+            {"turbulence", P::real, wind.turbulence, "gust amplitude relative to the wind speed", 0, 10}},
            make_wind});
     r.add({"stretch", "XPBD distance constraints on every cloth edge (stretch and shear)",
-           {{"compliance", P::real, 1e-8, "inverse stiffness, m/N (0 = inextensible)", 0, 1}}, make_stretch});
+           {{"compliance", P::real, StretchParams{}.compliance, "inverse stiffness, m/N (0 = inextensible)", 0, 1}}, make_stretch});
     r.add({"bend", "XPBD distance constraints across every interior edge",
-           {{"compliance", P::real, 1e-5, "inverse stiffness, m/N", 0, 1}}, make_bend});
+           {{"compliance", P::real, BendParams{}.compliance, "inverse stiffness, m/N", 0, 1}}, make_bend});
+    const PinParams pin;
     r.add({"pin", "fixes (or moves as a scripted handle) the cloth vertices whose rest position is in a box",
-           {{"min_x", P::real, -1e9, "box, rest coordinates", -1e9, 1e9}, {"min_y", P::real, -1e9, "", -1e9, 1e9},
-            {"min_z", P::real, -1e9, "", -1e9, 1e9}, {"max_x", P::real, 1e9, "", -1e9, 1e9},
-            {"max_y", P::real, 1e9, "", -1e9, 1e9}, {"max_z", P::real, 1e9, "", -1e9, 1e9},
-            {"vx", P::real, 0.0, "handle velocity, m/s", -1e3, 1e3}, {"vy", P::real, 0.0, "", -1e3, 1e3},
-            {"vz", P::real, 0.0, "", -1e3, 1e3}, {"move_start", P::real, 0.0, "s", 0, 1e9},
-            {"move_end", P::real, 1e9, "s", 0, 1e9},
-            {"follow", P::string, std::string(), "move rigidly with this obstacle (a waistband on a body)", 0, 0}},
+           {{"min_x", P::real, pin.lo.x(), "box, rest coordinates", -1e9, 1e9}, {"min_y", P::real, pin.lo.y(), "", -1e9, 1e9},
+            {"min_z", P::real, pin.lo.z(), "", -1e9, 1e9}, {"max_x", P::real, pin.hi.x(), "", -1e9, 1e9},
+            {"max_y", P::real, pin.hi.y(), "", -1e9, 1e9}, {"max_z", P::real, pin.hi.z(), "", -1e9, 1e9},
+            {"vx", P::real, pin.velocity.x(), "handle velocity, m/s", -1e3, 1e3}, {"vy", P::real, pin.velocity.y(), "", -1e3, 1e3},
+            {"vz", P::real, pin.velocity.z(), "", -1e3, 1e3}, {"move_start", P::real, pin.move_start, "s", 0, 1e9},
+            {"move_end", P::real, pin.move_end, "s", 0, 1e9},
+            {"follow", P::string, pin.follow, "move rigidly with this obstacle (a waistband on a body)", 0, 0}},
            make_pin});
     r.add({"obstacle_contact", "pushes cloth out of sphere and capsule obstacles (exact shapes), with friction",
-           {{"friction", P::real, 0.3, "Coulomb coefficient", 0, 10}}, make_obstacle_contact});
+           {{"friction", P::real, ObstacleContactParams{}.friction, "Coulomb coefficient", 0, 10}}, make_obstacle_contact});
+    const CcdContactParams contact;
     r.add({"ccd_contact", "crossing-free sub-steps: ccdlab's CCD, impulses, then rigid impact zones",
-           {{"self", P::boolean, true, "self-contact of the cloth (false: cloth-obstacle only; no self pass runs)", 0, 0},
-            {"iterations", P::integer, 4LL, "impulse rounds before the impact zones", 1, 1000},
-            {"k", P::integer, 18LL, "k-DOP of the CCD's BVH", 6, 26},
-            {"scheduler", P::string, std::string("phc"), "the CCD's traversal scheduler", 0, 0,
+           {{"self", P::boolean, contact.self, "self-contact of the cloth (false: cloth-obstacle only; no self pass runs)", 0, 0},
+            {"iterations", P::integer, (long long)contact.iterations, "impulse rounds before the impact zones", 1, 1000},
+            {"k", P::integer, (long long)contact.k, fmt::format("k-DOP of the CCD's BVH: {}", kKdopKs), 6, 26},
+            {"scheduler", P::string, contact.scheduler, "the CCD's traversal scheduler", 0, 0,
              {"sequential", "phc", "front", "static"}}},
            make_ccd_contact});
     return r;
@@ -145,7 +151,7 @@ PipelineStrategies contact_strategies(int k, const std::string& scheduler, int t
   PipelineStrategies s;
   s.k = k;
   s.threads = threads;
-  s.builder = builder_registry().make({"median", builder_registry().find("median")->defaults()});
+  s.builder = builder_registry().make({kDefaultHierarchy, builder_registry().find(kDefaultHierarchy)->defaults()});
   s.scheduler = scheduler_registry().make({scheduler, scheduler_registry().find(scheduler)->defaults()});
   ParamValues tester = tester_registry().find("float")->defaults();
   tester.set("thickness", thickness);

@@ -51,7 +51,7 @@ def test_options_are_the_yaml_strategies_and_errors_name_them():
         ccdlab.step(x0, x1, faces, kk=18)
     for end_boxes in (True, False, "auto", "on", "off"):
         assert ccdlab.step(x0, x1, faces, end_boxes=end_boxes)["vf"].shape == (1, 4)
-    with pytest.raises(ccdlab.Error, match="bv.end_boxes: expected true, false or auto, got 'often'"):
+    with pytest.raises(ccdlab.Error, match="end_boxes: expected on, off, auto, true or false, got 'often'"):
         ccdlab.step(x0, x1, faces, end_boxes="often")
     with pytest.raises(ccdlab.Error, match="faces\\[1\\]\\[2\\] = 9 is not a vertex index"):
         ccdlab.step(x0, x1, np.array([[0, 1, 2], [3, 4, 9]]))

@@ -117,7 +117,6 @@ void BM_TraverseWidth(benchmark::State& state) {
   const MeshSequence* scene = step.scene;
   const Positions &x0 = step.x0, &x1 = step.x1;
   PipelineStrategies s;
-  s.k = 18;
   s.width = width;
   s.builder = builder_registry().make({"median", {}});
   s.scheduler = scheduler_registry().make({"sequential", {}});
@@ -136,7 +135,6 @@ void BM_NarrowStep(benchmark::State& state) {
   const BenchStep step;
   CcdPipeline p(step.scene->topology(), step.scene->bodies(), [] {
     PipelineStrategies s;
-    s.k = 18;
     s.builder = builder_registry().make({"median", {}});
     s.scheduler = scheduler_registry().make({"sequential", {}});
     s.tester = tester_registry().make({"float", tester_registry().find("float")->defaults()});

@@ -113,10 +113,7 @@ int bench_command(const BenchOptions& o) {
   const int steps = all_steps - o.untimed_steps;  // timed and counted per run
 
   std::vector<NarrowMode> narrow_modes;
-  for (const auto& n : parse_names(o.narrow)) {
-    if (n != "batched" && n != "scalar") fail("--narrow: expected names from batched, scalar, got '{}'", n);
-    narrow_modes.push_back(parse_narrow_mode(n));
-  }
+  for (const auto& n : parse_names(o.narrow)) narrow_modes.push_back(kNarrowModes.parse(n, "--narrow"));
   std::vector<Config> configs;
   for (NarrowMode n : narrow_modes)
     for (const auto& s : schedulers)

@@ -4,10 +4,11 @@
 // its earliest time of contact.
 
 
+#include <algorithm>
+
 #include "experiments/cli/commands.hpp"
+#include "framework/config/pipeline_config.hpp"
 #include "framework/config/strategy_spec.hpp"
-#include "framework/geometry/kdop.hpp"
-#include "framework/hierarchy/wide_bvh.hpp"
 #include "experiments/cli/report.hpp"
 #include "framework/mesh/mesh_io.hpp"
 #include "framework/util/error.hpp"
@@ -25,25 +26,31 @@ StrategyChoice choose(const R& registry, const std::string& option, const std::s
   return {name, e->defaults()};
 }
 
+/// How `ccdlab step` spells each setting in messages: its flag.
+std::string flag_of(std::string_view key) {
+  if (key == "bv.width") return "--bv-width";
+  if (key == "bv.end_boxes") return "--end-boxes";
+  if (key == "narrow.mode") return "--narrow";
+  if (key == "narrow.representative") return "--representative";
+  std::string flag(key.substr(key.rfind('.') == std::string_view::npos ? 0 : key.rfind('.') + 1));
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return "--" + flag;
+}
+
 }  // namespace
 
 int step_command(const StepOptions& o) {
-  if (!is_kdop_k(o.k)) fail("--k: expected one of {}, got {}", kKdopKs, o.k);
-  if (!is_bvh_width(o.width)) fail("--bv-width: expected {}, got {}", kBvhWidths, o.width);
-  if (o.threads < 1 || o.threads > kMaxThreads)
-    fail("--threads: expected an integer from 1 to {}, got {}", kMaxThreads, o.threads);
-  PipelineStrategies s;
-  s.k = o.k;
-  s.width = o.width;
-  if (o.end_boxes != "on" && o.end_boxes != "off" && o.end_boxes != "auto")
-    fail("--end-boxes: expected on, off or auto, got '{}'", o.end_boxes);
-  s.end_boxes = parse_end_box_mode(o.end_boxes);
-  s.threads = o.threads;
-  s.memory_limit = parse_memory_size(o.memory_limit, "--memory-limit");
-  s.narrow = {parse_narrow_mode(o.narrow), parse_representative_rule(o.representative)};
-  s.builder = builder_registry().make(choose(builder_registry(), "hierarchy", o.hierarchy));
-  s.scheduler = scheduler_registry().make(choose(scheduler_registry(), "scheduler", o.scheduler));
-  s.tester = tester_registry().make(parse_strategy_spec(o.tester, "--tester ", "tester", tester_registry(), "float"));
+  PipelineConfig c;
+  c.k = o.k, c.width = o.width, c.threads = o.threads;
+  c.end_boxes = kEndBoxModes.parse(o.end_boxes, "--end-boxes");
+  c.memory_limit = o.memory_limit;
+  c.memory_limit_bytes = parse_memory_size(o.memory_limit, "--memory-limit");
+  c.narrow = {kNarrowModes.parse(o.narrow, "--narrow"), kRepresentativeRules.parse(o.representative, "--representative")};
+  c.hierarchy = choose(builder_registry(), "hierarchy", o.hierarchy);
+  c.scheduler = choose(scheduler_registry(), "scheduler", o.scheduler);
+  c.tester = parse_strategy_spec(o.tester, "--tester ", "tester", tester_registry(), kDefaultTester);
+  PipelineStrategies s = make_strategies(c, builder_registry(), scheduler_registry(), tester_registry(), flag_of);
+  const EndBoxMode end_boxes = s.end_boxes;
 
   MeshData m0 = read_mesh(o.mesh_t0);
   MeshData m1 = read_mesh(o.mesh_t1);
@@ -81,7 +88,7 @@ int step_command(const StepOptions& o) {
     j["memory"]["estimate_mb"] =
         double(estimate_pipeline_bytes(mesh, o.k, o.width, pipeline.orphans().vf.size() + pipeline.orphans().ee.size(),
                                        pipeline.end_boxes_kept())) / (1 << 20);
-    j["config"] = {{"k", o.k}, {"bv_width", o.width}, {"end_boxes", end_boxes_json(s.end_boxes)}, {"end_boxes_tested", pipeline.end_boxes_in_last_step()}, {"hierarchy", o.hierarchy}, {"scheduler", o.scheduler}, {"threads", o.threads}, {"tester", o.tester},
+    j["config"] = {{"k", o.k}, {"bv_width", o.width}, {"end_boxes", end_boxes_json(end_boxes)}, {"end_boxes_tested", pipeline.end_boxes_in_last_step()}, {"hierarchy", o.hierarchy}, {"scheduler", o.scheduler}, {"threads", o.threads}, {"tester", o.tester},
                    {"narrow", {{"mode", o.narrow}, {"representative", o.representative}}}, {"memory_limit", o.memory_limit},
                    {"simd_target", plane_filter_target()}};
     fmt::print("{}\n", j.dump(2));

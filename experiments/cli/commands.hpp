@@ -53,18 +53,19 @@ struct ExportOptions {
 };
 int export_command(const ExportOptions& o);
 
+/// The pipeline's settings as flags, their defaults those of PipelineSettings (pipeline_settings.hpp).
 struct StepOptions {
   std::string mesh_t0, mesh_t1;
-  int k = 18;
-  int width = kDefaultBvhWidth;
-  std::string end_boxes = "auto";  ///< on, off or auto (bv.end_boxes)
-  std::string scheduler = "sequential";
-  std::string hierarchy = "median";
-  std::string tester = "float";
-  std::string narrow = "batched";
-  std::string representative = "fixed";
-  int threads = 1;
-  std::string memory_limit = "80%";
+  int k = PipelineSettings{}.k;
+  int width = PipelineSettings{}.width;
+  std::string end_boxes{to_string(PipelineSettings{}.end_boxes)};  ///< bv.end_boxes (kEndBoxModes)
+  std::string scheduler = kDefaultScheduler;
+  std::string hierarchy = kDefaultHierarchy;
+  std::string tester = kDefaultTester;
+  std::string narrow{to_string(NarrowOptions{}.mode)};
+  std::string representative{to_string(NarrowOptions{}.representative)};
+  int threads = PipelineSettings{}.threads;
+  std::string memory_limit = kDefaultMemoryLimit;
   std::string contacts_csv;
   bool json = false;
   bool earliest = false;  ///< only the earliest time of contact (CcdPipeline::earliest_toi)
@@ -76,7 +77,7 @@ struct BenchOptions {
   std::vector<std::string> overrides;
   std::string schedulers = "sequential,phc,front,static";
   std::string threads = "1,2";
-  std::string narrow = "batched";  ///< narrow modes, e.g. "batched,scalar" to measure their ratio side by side
+  std::string narrow{to_string(NarrowOptions{}.mode)};  ///< narrow modes, e.g. "batched,scalar" to measure their ratio side by side
   std::string cores = "1,2,4,8,16,32,64";
   int rounds = 3;
   int untimed_steps = 0;  ///< the first K steps of every run are run and checked, not timed (a steady state)

@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
   auto* step_cmd = app.add_subcommand("step", "one CCD step between two mesh files (PLY or OBJ)");
   step_cmd->add_option("t0", step.mesh_t0, "mesh at the start of the step")->required();
   step_cmd->add_option("t1", step.mesh_t1, "mesh at the end of the step (same topology)")->required();
-  step_cmd->add_option("--k", step.k, "k-DOP: 6, 14, 18 or 26")->capture_default_str();
+  step_cmd->add_option("--k", step.k, fmt::format("k-DOP: {}", ccdlab::kKdopKs))->capture_default_str();
   step_cmd->add_option("--bv-width", step.width, "BVH width the traversal reads: 2 (binary) or 4")->capture_default_str();
   step_cmd->add_flag("--end-boxes{on}", step.end_boxes,
                      "--end-boxes[=on|off|auto]: also drop node pairs apart on x, y or z at both ends of the step "
@@ -76,9 +76,9 @@ int main(int argc, char** argv) {
   step_cmd->add_option("--threads", step.threads, "threads")->capture_default_str();
   step_cmd->add_option("--tester", step.tester, "primitive tester, e.g. conservative:delta=1e-4")->capture_default_str();
   step_cmd->add_option("--narrow", step.narrow, "narrow phase: batched (SIMD culling stages) or scalar")
-      ->check(CLI::IsMember({"batched", "scalar"}))->capture_default_str();
+      ->check(CLI::IsMember(ccdlab::kNarrowModes.names()))->capture_default_str();
   step_cmd->add_option("--representative", step.representative, "representative rule: first_free or fixed (owners)")
-      ->check(CLI::IsMember({"first_free", "fixed"}))->capture_default_str();
+      ->check(CLI::IsMember(ccdlab::kRepresentativeRules.names()))->capture_default_str();
   step_cmd->add_option("--memory-limit", step.memory_limit, "resident memory the step may use: 8GiB, 60%, none (above the "
                        "predicted need it streams candidates to the narrow phase)")->capture_default_str();
   step_cmd->add_option("--contacts", step.contacts_csv, "write contacts to this CSV (kind,a,b,c,d,toi,u,v,nx,ny,nz)");

@@ -20,6 +20,7 @@
 #include <string_view>
 
 #include "ccdlab/build_info.hpp"
+#include "framework/config/pipeline_config.hpp"
 #include "framework/config/strategy_spec.hpp"
 #include "framework/pipeline/bodies.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
@@ -97,45 +98,48 @@ StrategyChoice strategy_option(const py::handle& value, const std::string& key, 
 }
 
 PipelineStrategies strategies_from(const py::kwargs& options, const char* call) {
-  PipelineStrategies s;
-  StrategyChoice builder{"median", builder_registry().find("median")->defaults()};
-  StrategyChoice scheduler{"sequential", {}};
-  StrategyChoice tester{"float", tester_registry().find("float")->defaults()};
+  // The defaults (pipeline_settings.hpp; no memory limit: memory_limit_bytes stays 0), the strategies' parameters
+  // from their registries.
+  PipelineConfig c;
+  c.hierarchy.params = builder_registry().find(c.hierarchy.name)->defaults();
+  c.tester.params = tester_registry().find(c.tester.name)->defaults();
+  const auto named = [call](std::string_view key) { return fmt::format("{}: {}", call, key); };
   for (const auto& [key_handle, value] : options) {
     const std::string key = py::str(key_handle);
     if (key == "k") {
-      s.k = value.cast<int>();
-      if (!is_kdop_k(s.k)) fail("{}: k: expected one of {}, got {}", call, kKdopKs, s.k);
+      c.k = value.cast<int>();
     } else if (key == "width") {
-      s.width = value.cast<int>();
-      if (!is_bvh_width(s.width)) fail("{}: width: expected {}, got {}", call, kBvhWidths, s.width);
+      c.width = value.cast<int>();
     } else if (key == "threads") {
-      s.threads = value.cast<int>();
-      if (s.threads < 1 || s.threads > kMaxThreads) fail("{}: threads: expected 1 to {}, got {}", call, kMaxThreads, s.threads);
+      c.threads = value.cast<int>();
     } else if (key == "hierarchy") {
-      builder = strategy_option(value, key, builder_registry(), "median", call);
+      c.hierarchy = strategy_option(value, key, builder_registry(), kDefaultHierarchy, call);
     } else if (key == "scheduler") {
-      scheduler = strategy_option(value, key, scheduler_registry(), "sequential", call);
+      c.scheduler = strategy_option(value, key, scheduler_registry(), kDefaultScheduler, call);
     } else if (key == "tester") {
-      tester = strategy_option(value, key, tester_registry(), "float", call);
+      c.tester = strategy_option(value, key, tester_registry(), kDefaultTester, call);
     } else if (key == "narrow") {
-      s.narrow.mode = parse_narrow_mode(value.cast<std::string>());
+      c.narrow.mode = kNarrowModes.parse(value.cast<std::string>(), named("narrow"));
     } else if (key == "representative") {
-      s.narrow.representative = parse_representative_rule(value.cast<std::string>());
+      c.narrow.representative = kRepresentativeRules.parse(value.cast<std::string>(), named("representative"));
     } else if (key == "normal_cones") {
-      s.normal_cones = value.cast<bool>();
+      c.normal_cones = value.cast<bool>();
     } else if (key == "end_boxes") {
-      s.end_boxes = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? EndBoxMode::on : EndBoxMode::off)
-                                                     : parse_end_box_mode(value.cast<std::string>());
+      c.end_boxes = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? EndBoxMode::on : EndBoxMode::off)
+                                                     : kEndBoxModes.parse(value.cast<std::string>(), named("end_boxes"));
     } else {
       fail("{}: unknown option '{}' (k, width, end_boxes, hierarchy, scheduler, threads, tester, narrow, representative, "
            "normal_cones)", call, key);
     }
   }
-  s.builder = builder_registry().make(builder);
-  s.scheduler = scheduler_registry().make(scheduler);
-  s.tester = tester_registry().make(tester);
-  return s;
+  // Python spells a setting by its keyword: bv.k → k, narrow.mode → narrow.
+  const auto keyword = [&](std::string_view key) {
+    if (key == "narrow.mode") return named("narrow");
+    if (key == "narrow.representative") return named("representative");
+    const std::size_t dot = key.rfind('.');
+    return named(dot == std::string_view::npos ? key : key.substr(dot + 1));
+  };
+  return make_strategies(c, builder_registry(), scheduler_registry(), tester_registry(), keyword);
 }
 
 py::dict result_dict(const StepResult& r, const Positions& x0, const Positions& x1) {

@@ -44,27 +44,29 @@ std::string spec_of(const StrategyChoice& c) {
   return spec;
 }
 
-/// Options → the experiment config's strategy fields, validated as a YAML file's are.
-ExperimentConfig config_of(const Options& o) {
+/// How Options spells each setting in messages (PipelineSettings::validate's SettingName).
+std::string option_name(std::string_view key) {
+  if (key == "narrow.mode") return "Options::narrow";
+  if (key == "narrow.representative") return "Options::representative";
+  const std::size_t dot = key.rfind('.');
+  return "Options::" + std::string(dot == std::string_view::npos ? key : key.substr(dot + 1));
+}
+
+/// Options → the pipeline's configuration, checked by the settings' one check (PipelineSettings::validate) and the
+/// registries, as a YAML file's is.
+PipelineConfig config_of(const Options& o) {
   const Registries reg = builtin_registries();
-  ExperimentConfig c;
-  if (!is_kdop_k(o.k)) fail("Options::k: expected one of {}, got {}", kKdopKs, o.k);
-  if (!is_bvh_width(o.width)) fail("Options::width: expected {}, got {}", kBvhWidths, o.width);
-  if (o.threads < 1 || o.threads > kMaxThreads) fail("Options::threads: expected 1 to {}, got {}", kMaxThreads, o.threads);
+  PipelineConfig c;
   c.k = o.k, c.width = o.width, c.threads = o.threads, c.normal_cones = o.normal_cones;
-  if (o.end_boxes != "on" && o.end_boxes != "off" && o.end_boxes != "auto")
-    fail("Options::end_boxes: expected on, off or auto, got '{}'", o.end_boxes);
-  c.end_boxes = parse_end_box_mode(o.end_boxes);
-  c.hierarchy = parse_strategy_spec(o.hierarchy, "Options::hierarchy = ", "hierarchy", reg.builders, "median");
-  c.scheduler = parse_strategy_spec(o.scheduler, "Options::scheduler = ", "scheduler", reg.schedulers, "sequential");
-  c.tester = parse_strategy_spec(o.tester, "Options::tester = ", "tester", reg.testers, "float");
-  if (o.narrow != "batched" && o.narrow != "scalar") fail("Options::narrow: expected batched or scalar, got '{}'", o.narrow);
-  c.narrow.mode = parse_narrow_mode(o.narrow);
-  if (o.representative != "fixed" && o.representative != "first_free")
-    fail("Options::representative: expected fixed or first_free, got '{}'", o.representative);
-  c.narrow.representative = parse_representative_rule(o.representative);
+  c.end_boxes = kEndBoxModes.parse(o.end_boxes, "Options::end_boxes");
+  c.hierarchy = parse_strategy_spec(o.hierarchy, "Options::hierarchy = ", "hierarchy", reg.builders, kDefaultHierarchy);
+  c.scheduler = parse_strategy_spec(o.scheduler, "Options::scheduler = ", "scheduler", reg.schedulers, kDefaultScheduler);
+  c.tester = parse_strategy_spec(o.tester, "Options::tester = ", "tester", reg.testers, kDefaultTester);
+  c.narrow.mode = kNarrowModes.parse(o.narrow, "Options::narrow");
+  c.narrow.representative = kRepresentativeRules.parse(o.representative, "Options::representative");
   c.memory_limit = o.memory_limit;
   c.memory_limit_bytes = parse_memory_size(o.memory_limit, "Options::memory_limit");
+  c.validate(option_name);
   return c;
 }
 
@@ -102,7 +104,7 @@ Options Options::from_yaml(std::string_view yaml, std::string_view source) {
   if (!root.IsMap()) fail("{}: expected a mapping of option keys (scheduler: …, threads: …)", where);
   const YamlReader r(where, {});
   r.check_keys(root, "", {"bv", "hierarchy", "scheduler", "threads", "tester", "narrow", "normal_cones", "memory_limit"});
-  ExperimentConfig c;
+  PipelineConfig c;
   try {
     read_strategy_section(r, root, builtin_registries(), c);
   } catch (const YAML::Exception& e) {
@@ -111,14 +113,14 @@ Options Options::from_yaml(std::string_view yaml, std::string_view source) {
   Options o;
   o.k = c.k, o.width = c.width, o.end_boxes = to_string(c.end_boxes), o.threads = c.threads, o.normal_cones = c.normal_cones;
   o.hierarchy = spec_of(c.hierarchy), o.scheduler = spec_of(c.scheduler), o.tester = spec_of(c.tester);
-  o.narrow = c.narrow.mode == NarrowMode::scalar ? "scalar" : "batched";
-  o.representative = c.narrow.representative == RepresentativeRule::first_free ? "first_free" : "fixed";
+  o.narrow = to_string(c.narrow.mode);
+  o.representative = to_string(c.narrow.representative);
   o.memory_limit = c.memory_limit;
   return o;
 }
 
 struct Detector::Impl {
-  ExperimentConfig config;
+  PipelineConfig config;
   std::vector<Face> faces;
   Index vertices = 0;  // fixed once the pipeline exists
   std::optional<TriMesh> mesh;
@@ -129,7 +131,7 @@ struct Detector::Impl {
     vertices = vertex_count;
     mesh.emplace(vertex_count, faces);
     if (bodies.empty()) bodies = single_cloth_body(*mesh);
-    pipeline = std::make_unique<CcdPipeline>(*mesh, std::move(bodies), make_strategies(config, builtin_registries()));
+    pipeline = std::make_unique<CcdPipeline>(*mesh, std::move(bodies), make_strategies(config, builtin_registries(), option_name));
   }
   /// Checks a step's positions (and fixes the vertex count on the first): the frames as the pipeline takes them.
   std::pair<Positions, Positions> frames(std::span<const Point> x0, std::span<const Point> x1) {

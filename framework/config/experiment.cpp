@@ -207,23 +207,23 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
 }
 }  // namespace
 
-void read_strategy_section(const YamlReader& r, const YAML::Node& root, const Registries& reg, ExperimentConfig& c) {
+void read_strategy_section(const YamlReader& r, const YAML::Node& root, const Registries& reg, PipelineConfig& c) {
+  // Each value is read as its type, then checked by the one check of its setting (pipeline_settings.hpp), located.
+  const auto checked = [&](const YAML::Node& node, const char* key, long long value, std::string (*check)(long long)) {
+    if (const std::string expected = check(value); !expected.empty()) r.error(node, key, expected);
+    return int(value);
+  };
+  const auto named = [&](const YAML::Node& node, const char* key, const auto& values) {
+    const auto v = values.find(r.string(node, key));
+    if (!v) r.error(node, key, values.expected());
+    return *v;
+  };
   if (root["bv"]) {
     r.check_keys(root["bv"], "bv", {"k", "width", "end_boxes"});
-    if (root["bv"]["k"]) {
-      c.k = int(r.integer(root["bv"]["k"], "bv.k", 6, 26));
-      if (!is_kdop_k(c.k)) r.error(root["bv"]["k"], "bv.k", fmt::format("one of {}", kKdopKs));
-    }
-    if (root["bv"]["width"]) {
-      c.width = int(r.integer(root["bv"]["width"], "bv.width", 2, 4));
-      if (!is_bvh_width(c.width)) r.error(root["bv"]["width"], "bv.width", kBvhWidths);
-    }
-    if (const YAML::Node e = root["bv"]["end_boxes"]) {
-      bool on = false;
-      if (e.IsScalar() && e.Scalar() == "auto") c.end_boxes = EndBoxMode::automatic;
-      else if (e.IsScalar() && YAML::convert<bool>::decode(e, on)) c.end_boxes = on ? EndBoxMode::on : EndBoxMode::off;
-      else r.error(e, "bv.end_boxes", "true, false or auto");
-    }
+    if (const YAML::Node n = root["bv"]["k"]) c.k = checked(n, "bv.k", r.integer(n, "bv.k", -1e18, 1e18), setting_check::k);
+    if (const YAML::Node n = root["bv"]["width"])
+      c.width = checked(n, "bv.width", r.integer(n, "bv.width", -1e18, 1e18), setting_check::width);
+    if (const YAML::Node n = root["bv"]["end_boxes"]) c.end_boxes = named(n, "bv.end_boxes", kEndBoxModes);
   }
   auto strategy = [&](const char* key, const auto& registry, const std::string& default_name) {
     return root[key] ? r.strategy(root[key], key, registry, default_name)
@@ -234,27 +234,20 @@ void read_strategy_section(const YamlReader& r, const YAML::Node& root, const Re
   c.tester = strategy("tester", reg.testers, c.tester.name);
   if (const YAML::Node rs = root["restructure"]) {
     r.check_keys(rs, "restructure", {"threshold"});
-    if (rs["threshold"]) {
-      c.restructure_threshold = r.real(rs["threshold"], "restructure.threshold", 0, 1e9);
-      if (c.restructure_threshold != 0 && c.restructure_threshold < 1)
-        r.error(rs["threshold"], "restructure.threshold", "0 (off) or a number >= 1");
+    if (const YAML::Node n = rs["threshold"]) {
+      c.restructure_threshold = r.real(n, "restructure.threshold", -1e300, 1e300);
+      if (const std::string expected = setting_check::restructure_threshold(c.restructure_threshold); !expected.empty())
+        r.error(n, "restructure.threshold", expected);
     }
   }
   if (root["normal_cones"]) c.normal_cones = r.boolean(root["normal_cones"], "normal_cones");
   if (const YAML::Node n = root["narrow"]) {
     r.check_keys(n, "narrow", {"mode", "representative"});
-    if (const YAML::Node m = n["mode"]) {
-      const std::string mode = r.string(m, "narrow.mode");
-      if (mode != "scalar" && mode != "batched") r.error(m, "narrow.mode", "scalar or batched");
-      c.narrow.mode = parse_narrow_mode(mode);
-    }
-    if (const YAML::Node m = n["representative"]) {
-      const std::string rule = r.string(m, "narrow.representative");
-      if (rule != "fixed" && rule != "first_free") r.error(m, "narrow.representative", "fixed or first_free");
-      c.narrow.representative = parse_representative_rule(rule);
-    }
+    if (const YAML::Node m = n["mode"]) c.narrow.mode = named(m, "narrow.mode", kNarrowModes);
+    if (const YAML::Node m = n["representative"]) c.narrow.representative = named(m, "narrow.representative", kRepresentativeRules);
   }
-  if (root["threads"]) c.threads = int(r.integer(root["threads"], "threads", 1, kMaxThreads));
+  if (const YAML::Node n = root["threads"])
+    c.threads = checked(n, "threads", r.integer(n, "threads", -1e18, 1e18), setting_check::threads);
   if (root["memory_limit"]) c.memory_limit = r.string(root["memory_limit"], "memory_limit");
   try {
     c.memory_limit_bytes = parse_memory_size(c.memory_limit, "memory_limit");
@@ -265,8 +258,23 @@ void read_strategy_section(const YamlReader& r, const YAML::Node& root, const Re
 }
 
 nlohmann::json end_boxes_json(EndBoxMode mode) {
-  if (mode == EndBoxMode::automatic) return "auto";
+  if (mode == EndBoxMode::automatic) return std::string(to_string(mode));
   return mode == EndBoxMode::on;
+}
+
+nlohmann::json to_json(const PipelineConfig& c) {
+  nlohmann::json j;
+  j["bv"] = {{"k", c.k}, {"width", c.width}, {"end_boxes", end_boxes_json(c.end_boxes)}};
+  j["hierarchy"] = params_json(c.hierarchy);
+  j["restructure"] = {{"threshold", c.restructure_threshold}};
+  j["normal_cones"] = c.normal_cones;
+  j["narrow"] = {{"mode", to_string(c.narrow.mode)}, {"representative", to_string(c.narrow.representative)}};
+  j["scheduler"] = params_json(c.scheduler);
+  j["threads"] = c.threads;
+  j["memory_limit"] = c.memory_limit;
+  j["memory_limit_bytes"] = c.memory_limit_bytes;
+  j["tester"] = params_json(c.tester);
+  return j;
 }
 
 nlohmann::json to_json(const ExperimentConfig& c) {
@@ -288,16 +296,7 @@ nlohmann::json to_json(const ExperimentConfig& c) {
       j["scene"] = {{"bodies", bodies}};
     }
   }
-  j["bv"] = {{"k", c.k}, {"width", c.width}, {"end_boxes", end_boxes_json(c.end_boxes)}};
-  j["hierarchy"] = params_json(c.hierarchy);
-  j["restructure"] = {{"threshold", c.restructure_threshold}};
-  j["normal_cones"] = c.normal_cones;
-  j["narrow"] = {{"mode", to_string(c.narrow.mode)}, {"representative", to_string(c.narrow.representative)}};
-  j["scheduler"] = params_json(c.scheduler);
-  j["threads"] = c.threads;
-  j["memory_limit"] = c.memory_limit;
-  j["memory_limit_bytes"] = c.memory_limit_bytes;
-  j["tester"] = params_json(c.tester);
+  j.update(to_json(static_cast<const PipelineConfig&>(c)));
   j["output"] = {{"dir", c.output.dir}, {"csv", c.output.csv}, {"jsonl", c.output.jsonl}, {"contacts", c.output.contacts}};
   return j;
 }
@@ -326,21 +325,8 @@ MeshSequence make_scene(const ExperimentConfig& c, const Registries& reg) {
   return load_frame_files(c.scene.files, c.scene.self_collision);
 }
 
-PipelineStrategies make_strategies(const ExperimentConfig& c, const Registries& reg) {
-  PipelineStrategies s;
-  s.k = c.k;
-  s.width = c.width;
-  s.end_boxes = c.end_boxes;
-  s.threads = c.threads;
-  s.split_threads = c.split_threads;
-  s.restructure_threshold = c.restructure_threshold;
-  s.normal_cones = c.normal_cones;
-  s.narrow = c.narrow;
-  s.memory_limit = c.memory_limit_bytes;
-  s.builder = reg.builders.make(c.hierarchy);
-  s.scheduler = reg.schedulers.make(c.scheduler);
-  s.tester = reg.testers.make(c.tester);
-  return s;
+PipelineStrategies make_strategies(const PipelineConfig& c, const Registries& reg, const SettingName& name) {
+  return make_strategies(c, reg.builders, reg.schedulers, reg.testers, name);
 }
 
 }  // namespace ccdlab

@@ -84,14 +84,6 @@ void compact(FeatureBatch& batch, const std::vector<std::uint8_t>& keep) {
 
 }  // namespace
 
-std::string_view to_string(NarrowMode m) { return m == NarrowMode::scalar ? "scalar" : "batched"; }
-
-NarrowMode parse_narrow_mode(std::string_view name) {
-  if (name == "scalar") return NarrowMode::scalar;
-  if (name == "batched") return NarrowMode::batched;
-  fail("narrow.mode: expected 'scalar' or 'batched', got '{}'", name);
-}
-
 void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& bounds, bool end_boxes) {
   x_t0_ = &x_t0;
   x_t1_ = &x_t1;

@@ -24,13 +24,14 @@
 #include "framework/narrow/representatives.hpp"
 #include "framework/primitive/tester.hpp"
 #include "framework/traversal/candidates.hpp"
+#include "framework/util/named_values.hpp"
 
 namespace ccdlab {
 
 enum class NarrowMode { scalar, batched };
-[[nodiscard]] std::string_view to_string(NarrowMode m);
-/// "scalar" | "batched"; throws Error naming the valid values otherwise.
-[[nodiscard]] NarrowMode parse_narrow_mode(std::string_view name);
+/// narrow.mode's names: the one list every reader, message and choice list takes.
+inline constexpr NamedValues<NarrowMode, 2> kNarrowModes{{{{"scalar", NarrowMode::scalar}, {"batched", NarrowMode::batched}}}};
+[[nodiscard]] inline std::string_view to_string(NarrowMode m) { return kNarrowModes.name_of(m); }
 
 /// Whether the candidates carry the fixed rule's orphans (Representatives::append_pairs): in the steps where it
 /// pays (batched mode; the rule is in narrow_phase.cpp), or in every step, or never (tests compare the three).

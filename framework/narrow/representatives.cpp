@@ -7,14 +7,6 @@
 
 namespace ccdlab {
 
-std::string_view to_string(RepresentativeRule r) { return r == RepresentativeRule::fixed ? "fixed" : "first_free"; }
-
-RepresentativeRule parse_representative_rule(std::string_view name) {
-  if (name == "fixed") return RepresentativeRule::fixed;
-  if (name == "first_free") return RepresentativeRule::first_free;
-  fail("narrow.representative: expected 'fixed' or 'first_free', got '{}'", name);
-}
-
 Index Representatives::face_of_vertex(Index v) const {
   return rule_ == RepresentativeRule::fixed ? owners_.vertex_owner[v] : mesh_.vertex_faces(v)[0];
 }

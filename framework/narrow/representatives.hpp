@@ -29,6 +29,7 @@
 #include "framework/primitive/feature_pairs.hpp"
 #include "framework/traversal/candidates.hpp"
 #include "framework/util/memory.hpp"
+#include "framework/util/named_values.hpp"
 #include "framework/util/uninitialized_vector.hpp"
 
 namespace ccdlab {
@@ -80,9 +81,10 @@ namespace detail {
 bool gather_owned_simd(const GatherRecord* rec, std::span<const FacePair> candidates, VertexFacePair* out_vf,
                        EdgeEdgePair* out_ee, std::size_t* n_vf, std::size_t* n_ee);
 }  // namespace detail
-[[nodiscard]] std::string_view to_string(RepresentativeRule r);
-/// "fixed" | "first_free"; throws Error naming the valid values otherwise.
-[[nodiscard]] RepresentativeRule parse_representative_rule(std::string_view name);
+/// narrow.representative's names: the one list every reader, message and choice list takes.
+inline constexpr NamedValues<RepresentativeRule, 2> kRepresentativeRules{
+    {{{"fixed", RepresentativeRule::fixed}, {"first_free", RepresentativeRule::first_free}}}};
+[[nodiscard]] inline std::string_view to_string(RepresentativeRule r) { return kRepresentativeRules.name_of(r); }
 
 class Representatives {
  public:

@@ -24,13 +24,14 @@ namespace ccdlab {
 
 class BodyHierarchy {
  public:
+  /// What the hierarchy takes of the pipeline's settings (pipeline_settings.hpp, where their defaults are).
   struct Settings {
-    int k = 18;
-    int width = kDefaultBvhWidth;
-    int threads = 1;
-    double restructure_threshold = 0;  ///< PipelineStrategies::restructure_threshold (0 = off)
-    bool normal_cones = false;         ///< cut cone patches (self-colliding bodies only)
-    bool end_boxes = false;            ///< keep every node's EndBoxes (and, width 4, the records' WideEnds)
+    int k;
+    int width;
+    int threads;
+    double restructure_threshold;  ///< 0 = off
+    bool normal_cones;             ///< cut cone patches (self-colliding bodies only)
+    bool end_boxes;                ///< keep every node's EndBoxes (and, width 4, the records' WideEnds)
   };
   /// `faces`: the body's faces; `self_collides`: whether its self pass runs (normal cones serve only that pass).
   BodyHierarchy(const TriMesh& mesh, std::vector<Index> faces, bool self_collides, const Settings& settings);

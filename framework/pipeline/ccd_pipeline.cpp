@@ -9,69 +9,12 @@
 #include "framework/util/memory.hpp"
 
 namespace ccdlab {
-namespace {
-
-/// bv.end_boxes: auto (CcdPipeline::end_boxes_pay). End boxes cost every step a pass over the nodes (their refit
-/// beside the k-DOPs) and 12 more compares per node pair the walk opens; they save the node pairs and the
-/// candidates they drop. They run in a step when the last step run with them kept at most kEndsKeepAtMost of
-/// the candidates of the last step run without them, and dropped at least kEndsDropPerFace candidates per face
-/// (docs/wide-bvh.md, "End boxes", gives the thresholds' margins on the real steps). Both counts are measured again every
-/// kEndsRemeasure steps, one step without (step 0 mod 16), then one with (1 mod 16) when the step without had
-/// enough candidates to drop. Whole-step candidate counts are the same for every scheduler, width, thread count
-/// and slicing, so every schedule decides alike and reports the same counters.
-constexpr double kEndsKeepAtMost = 0.5;
-constexpr double kEndsDropPerFace = 4;
-constexpr std::uint64_t kEndsRemeasure = 16;
-static_assert(kEndsRemeasure == TriangleStageRule::kRemeasure,
-              "stage 0 measures at 2 and 3 mod 16, after the end boxes' steps 0 and 1, on the same kind of candidates");
-
-}  // namespace
-
-void PipelineStrategies::validate() const {
-  if (!is_kdop_k(k)) fail("bv.k: expected one of {}, got {}", kKdopKs, k);
-  if (!is_bvh_width(width)) fail("bv.width: expected {}, got {}", kBvhWidths, width);
-  if (threads < 1 || threads > kMaxThreads) fail("threads: expected an integer from 1 to {}, got {}", kMaxThreads, threads);
-  if (split_threads < 0 || split_threads > kMaxThreads)
-    fail("split_threads: expected 0 (= threads) or an integer up to {}, got {}", kMaxThreads, split_threads);
-  if (!(restructure_threshold >= 0) || !std::isfinite(restructure_threshold))
-    fail("restructure: expected a finite threshold ≥ 0 (0 = off), got {}", restructure_threshold);
+void PipelineStrategies::validate(const SettingName& name) const {
+  PipelineSettings::validate(name);
   if (!builder || !scheduler || !tester) fail("pipeline: a hierarchy builder, a scheduler and a tester are required");
   if (normal_cones && tester->thickness() > 0)
-    fail("normal_cones: culling is exact only for contact at zero distance; got tester thickness {}", tester->thickness());
-}
-
-std::string_view to_string(EndBoxMode m) {
-  return m == EndBoxMode::on ? "on" : m == EndBoxMode::off ? "off" : "auto";
-}
-
-EndBoxMode parse_end_box_mode(std::string_view name) {
-  if (name == "true" || name == "on") return EndBoxMode::on;
-  if (name == "false" || name == "off") return EndBoxMode::off;
-  if (name == "auto") return EndBoxMode::automatic;
-  fail("bv.end_boxes: expected true, false or auto, got '{}'", name);
-}
-
-std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std::size_t orphan_pairs, bool end_boxes) {
-  const std::uint64_t v = std::uint64_t(mesh.num_vertices()), e = std::uint64_t(mesh.num_edges()),
-                      f = std::uint64_t(mesh.num_faces());
-  const std::uint64_t bv = std::visit([](const auto& vec) { return std::uint64_t(sizeof(vec[0])); }, make_bvs(k));
-  const std::uint64_t bvh = 2 * f * (sizeof(BvhNode) + sizeof(Index) + bv);  // nodes, leaf counts, node volumes
-  const std::uint64_t wide_bounds =
-      std::visit([](const auto& vec) { return std::uint64_t(sizeof(vec[0])); }, make_wide_bvs(k));
-  // One wide node per inner node (f − 1) and the top one: its lanes, bounds and owner, plus a slot and a home per node.
-  const std::uint64_t wide = width == 4 ? f * (sizeof(WideLayout::Lanes) + wide_bounds + sizeof(Index)) + 4 * f * sizeof(Index) : 0;
-  const std::uint64_t feature_boxes = v * FeatureBounds::kBytesPerVertex;
-  const std::uint64_t records = std::max<std::uint64_t>(f * sizeof(GatherRecord), kLargeAllocation);  // one huge page at least
-  const std::uint64_t ownership = (v + e) * sizeof(Index) + f + records;  // owners, masks, the gather's records
-  // The orphan set, and the same pairs again by the face that carries them (representatives.hpp), with a list
-  // start and a signature per face.
-  const std::uint64_t orphans = std::uint64_t(orphan_pairs) * (sizeof(EdgeEdgePair) + sizeof(CarriedOrphan)) +
-                                f * (sizeof(std::uint32_t) + sizeof(std::uint64_t));
-  // The frames, and stage 0's float copy with its faces' boxes (framework/swept/frame_points.hpp).
-  const std::uint64_t frames = 2 * v * sizeof(Vec3) + v * sizeof(FloatFramePoints) + f * sizeof(FloatFaceBoxes);
-  // End boxes: per node, and per wide node (framework/swept/end_boxes.hpp).
-  const std::uint64_t ends = end_boxes ? 2 * f * sizeof(EndBoxes) + (width == 4 ? f * sizeof(WideEnds) : 0) : 0;
-  return bvh + wide + feature_boxes + ownership + orphans + frames + ends;
+    fail("{}: culling is exact only for contact at zero distance; got tester thickness {}",
+         name ? name("normal_cones") : std::string("normal_cones"), tester->thickness());
 }
 
 namespace {
@@ -93,9 +36,10 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
                 const int b = rules_.body_of_face(f);
                 return rules_.bodies_interact(b, b);
               }),
-      traversal_(*strategies_.scheduler, strategies_.threads, MemoryBudget(strategies_.memory_limit, strategies_.stream_slices)),
-      narrow_driver_(narrow_, strategies_.threads) {
-  if (const std::uint64_t limit = strategies_.memory_limit; limit > 0) {
+      traversal_(*strategies_.scheduler, strategies_.threads, MemoryBudget(strategies_.memory_limit_bytes, strategies_.stream_slices)),
+      narrow_driver_(narrow_, strategies_.threads),
+      end_box_rule_(strategies_.end_boxes) {
+  if (const std::uint64_t limit = strategies_.memory_limit_bytes; limit > 0) {
     const std::uint64_t resident = current_rss_bytes(),
                         need = estimate_pipeline_bytes(mesh_, strategies_.k, strategies_.width, orphans().vf.size() + orphans().ee.size(),
                                                        end_boxes_kept());
@@ -147,21 +91,6 @@ bool CcdPipeline::end_boxes_kept() const {
   return strategies_.end_boxes != EndBoxMode::off && strategies_.tester->cull_reach().has_value();
 }
 
-bool CcdPipeline::end_boxes_pay() const {
-  if (!end_boxes_kept()) return false;
-  if (strategies_.end_boxes == EndBoxMode::on) return true;
-  const double faces = double(mesh_.num_faces());
-  const bool may_pay = double(candidates_without_ends_) >= kEndsDropPerFace * faces;
-  switch (steps_ % kEndsRemeasure) {
-    case 0: return false;     // measures the candidates without
-    case 1: return may_pay;  // measures them with
-    default:
-      return may_pay && double(candidates_with_ends_) <= kEndsKeepAtMost * double(candidates_without_ends_) &&
-             double(candidates_without_ends_ - std::min(candidates_with_ends_, candidates_without_ends_)) >=
-                 kEndsDropPerFace * faces;
-  }
-}
-
 double CcdPipeline::end_reach() const {
   const CullReach reach = *strategies_.tester->cull_reach();
   return end_boxes_reach(reach.abs, reach.rel, swept_.scene_extent());
@@ -188,7 +117,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   clock.parallel("swept_bv", &tm.swept_bv_ms, [&](PhaseTrace& t) {
     swept_.update(x_t0, x_t1, strategies_.tester->thickness(), strategies_.threads, t);
   });
-  ends_in_step_ = end_boxes_pay();
+  ends_in_step_ = end_box_rule_.runs(end_boxes_kept(), std::size_t(mesh_.num_faces()));
   narrow_.begin_step(x_t0, x_t1, swept_, ends_in_step_);
 
   // 2. Body hierarchies: refit, restructure, then what hangs on the topology.
@@ -218,8 +147,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   traversal_.run(std::size_t(mesh_.num_faces()), narrow_driver_, result);
   narrow_driver_.test_orphans(strategies_.normal_cones ? &face_patch_ : nullptr, result);
   narrow_.end_step(result.counters);
-  (ends_in_step_ ? candidates_with_ends_ : candidates_without_ends_) = result.counters.candidate_pairs;
-  ++steps_;
+  end_box_rule_.record(ends_in_step_, result.counters.candidate_pairs);
 
   // 5. One order, whatever the schedule.
   clock.serial("sort_contacts", nullptr, [&] { sort_contacts(result.contacts, sort_scratch_); });

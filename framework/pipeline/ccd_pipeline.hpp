@@ -15,8 +15,10 @@
 #include "framework/narrow/narrow_phase.hpp"
 #include "framework/pipeline/bodies.hpp"
 #include "framework/pipeline/body_hierarchy.hpp"
+#include "framework/pipeline/end_box_rule.hpp"
 #include "framework/pipeline/memory_budget.hpp"
 #include "framework/pipeline/narrow_driver.hpp"
+#include "framework/pipeline/pipeline_settings.hpp"
 #include "framework/pipeline/step_result.hpp"
 #include "framework/swept/feature_bounds.hpp"
 #include "framework/pipeline/traversal_driver.hpp"
@@ -25,43 +27,15 @@
 
 namespace ccdlab {
 
-/// bv.end_boxes (framework/swept/end_boxes.hpp): test the nodes' boxes at both ends of the step in every
-/// step (`on`), never (`off`), or in the steps where they pay (`automatic`, YAML `auto`: CcdPipeline's rule).
-enum class EndBoxMode { off, on, automatic };
-[[nodiscard]] std::string_view to_string(EndBoxMode m);
-/// true / on, false / off, or auto; throws Error naming the field otherwise.
-[[nodiscard]] EndBoxMode parse_end_box_mode(std::string_view name);
-
-struct PipelineStrategies {
-  int k = 18;  ///< k-DOP: 6, 14, 18 or 26
-  int width = kDefaultBvhWidth;  ///< BVH width the traversal reads: 2 (binary) or 4 (framework/hierarchy/wide_bvh.hpp)
-  int threads = 1;  ///< OpenMP threads for every stage
-  /// The thread count the BVTT is split for (phc and static cut c·N tasks); 0 = `threads`. `ccdlab bench` runs
-  /// 1 thread with split_threads = N to record the tasks N cores would get, so the simulator replays them.
-  int split_threads = 0;
-  /// Adaptive restructuring: rebuild a sub-tree when its quality (Σ sizes of inner nodes ÷ size of its root)
-  /// exceeds this × its value at the last (re)build. 0 = off.
-  double restructure_threshold = 0;
-  /// Continuous normal-cone culling of self tests (framework/traversal/normal_cones.hpp); thickness 0 only.
-  bool normal_cones = false;
-  /// End boxes (framework/swept/end_boxes.hpp): the traversal also drops node pairs apart on x, y or z at both
-  /// ends of the step. Needs the tester's reach (PrimitiveTester::cull_reach); off for a tester without one.
-  EndBoxMode end_boxes = EndBoxMode::automatic;
-  /// Bytes the process may hold resident during a step (0 = no limit): above the predicted need, a step streams
-  /// its candidates to the narrow phase slice by slice (framework/pipeline/memory_budget.hpp).
-  std::uint64_t memory_limit = 0;
-  /// Stream every step in (about) this many slices per pass, whatever the memory: to test streaming and to
-  /// measure its cost. 0 = only when the memory limit asks for it.
-  std::size_t stream_slices = 0;
-  /// How the narrow phase runs: scalar or batched, and its representative rule (framework/narrow/).
-  NarrowOptions narrow;
+/// The settings (pipeline_settings.hpp) and the strategies made from the names a configuration chose.
+struct PipelineStrategies : PipelineSettings {
   std::unique_ptr<HierarchyBuilder> builder;
   std::unique_ptr<TraversalScheduler> scheduler;
   std::unique_ptr<PrimitiveTester> tester;
 
-  /// The one check of a pipeline's configuration, whoever made it (YAML, the CLI, the Python module, a scene's
-  /// ccd_contact effect): throws Error naming the field (YAML checks the same earlier, with its line).
-  void validate() const;
+  /// The one check of a pipeline's configuration, whoever made it: the settings (PipelineSettings::validate,
+  /// spelled by `name`), then the strategies and what depends on them. Throws Error naming the field.
+  void validate(const SettingName& name = {}) const;
 };
 
 class CcdPipeline {
@@ -110,8 +84,6 @@ class CcdPipeline {
   [[nodiscard]] bool end_boxes_in_last_step() const { return ends_in_step_; }
 
  private:
-  /// Whether this step tests end boxes: bv.end_boxes, and for `automatic` the rule from the last steps' counts.
-  [[nodiscard]] bool end_boxes_pay() const;
   /// The distance beyond which the tester reports no pair, for every pair of this step (its reach at the scene's
   /// size): end boxes are inflated by half of it.
   [[nodiscard]] double end_reach() const;
@@ -127,19 +99,8 @@ class CcdPipeline {
   NarrowDriver narrow_driver_;
   ContactSortScratch sort_scratch_;  ///< sort_contacts' buffers, kept across steps
   bool built_ = false;
-  // The end boxes' rule (end_boxes_pay): steps run, the candidates of the last step run without them and of the
-  // last run with them, and whether this (or the last) step tests them.
-  std::uint64_t steps_ = 0;
-  std::uint64_t candidates_without_ends_ = 0;
-  std::uint64_t candidates_with_ends_ = 0;
-  bool ends_in_step_ = false;
+  EndBoxRule end_box_rule_;    ///< whether a step tests end boxes
+  bool ends_in_step_ = false;  ///< whether this (or the last) step tests them
 };
-
-/// Bytes a pipeline over `mesh` will add before its first traversal: the BVHs and their volumes (the leaves' are
-/// the faces' swept volumes; and their 4-wide view for width 4), the feature bounds, the ownership, the orphan set
-/// and the two frames of a step. Checked against memory_limit when a pipeline is made, so that a run too large for
-/// the machine is refused before it starts.
-std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std::size_t orphan_pairs,
-                                      bool end_boxes = false);
 
 }  // namespace ccdlab

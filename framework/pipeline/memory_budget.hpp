@@ -11,6 +11,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "framework/mesh/tri_mesh.hpp"
+
 namespace ccdlab {
 
 struct MemoryPlan {
@@ -59,5 +61,12 @@ class MemoryBudget {
   std::uint64_t last_pairs_ = 0;
   bool recorded_ = false;
 };
+
+/// Bytes a pipeline over `mesh` will add before its first traversal: the BVHs and their volumes (the leaves' are
+/// the faces' swept volumes; and their 4-wide view for width 4), the feature bounds, the ownership, the orphan set
+/// and the two frames of a step. Checked against memory_limit when a pipeline is made, so that a run too large for
+/// the machine is refused before it starts.
+std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std::size_t orphan_pairs,
+                                      bool end_boxes = false);
 
 }  // namespace ccdlab

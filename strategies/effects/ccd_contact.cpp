@@ -27,12 +27,7 @@ namespace {
 
 class CcdContact final : public Effect {
  public:
-  struct Params {
-    bool self = true;
-    int iterations = 4;
-    int k = 18;
-    std::string scheduler = "phc";
-  };
+  using Params = CcdContactParams;
   explicit CcdContact(Params p) : p_(std::move(p)) {}
   [[nodiscard]] std::string_view name() const override { return "ccd_contact"; }
   [[nodiscard]] Stage stage() const override { return Stage::collision; }
@@ -133,8 +128,11 @@ class CcdContact final : public Effect {
 }  // namespace
 
 std::unique_ptr<Effect> make_ccd_contact(const ParamValues& p) {
+  const long long k = p.integer("k");
+  if (const std::string expected = setting_check::k(k); !expected.empty())
+    fail("effect ccd_contact: k: expected {}, got {}", expected, k);
   return std::make_unique<CcdContact>(
-      CcdContact::Params{p.boolean("self"), int(p.integer("iterations")), int(p.integer("k")), p.string("scheduler")});
+      CcdContact::Params{p.boolean("self"), int(p.integer("iterations")), int(k), p.string("scheduler")});
 }
 
 }  // namespace ccdlab

@@ -24,7 +24,7 @@ class Gravity final : public Effect {
 }  // namespace
 
 std::unique_ptr<Effect> make_gravity(const ParamValues& p) {
-  return std::make_unique<Gravity>(Vec3(p.real("gx"), p.real("gy"), p.real("gz")));
+  return std::make_unique<Gravity>(Vec3(p.real("gx"), p.real("gy"), p.real("gz")));  // GravityParams
 }
 
 }  // namespace ccdlab

@@ -12,11 +12,7 @@ namespace {
 
 class Pin final : public Effect {
  public:
-  struct Params {
-    Vec3 lo, hi, velocity;
-    double move_start = 0, move_end = 1e300;
-    std::string follow;  ///< obstacle name, or empty
-  };
+  using Params = PinParams;
   explicit Pin(Params p) : p_(p) {}
   [[nodiscard]] std::string_view name() const override { return "pin"; }
   [[nodiscard]] Stage stage() const override { return Stage::constraint; }

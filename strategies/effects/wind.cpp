@@ -21,11 +21,7 @@ double unit(std::uint64_t& s) { return double(splitmix64(s) >> 11) * 0x1.0p-53; 
 
 class Wind final : public Effect {
  public:
-  struct Params {
-    Vec3 velocity{3, 0, 0};
-    double drag = 1.0;
-    double turbulence = 0.3;  ///< gust amplitude relative to |velocity|
-  };
+  using Params = WindParams;
   explicit Wind(Params p) : p_(p) {}
   [[nodiscard]] std::string_view name() const override { return "wind"; }
   [[nodiscard]] Stage stage() const override { return Stage::force; }

@@ -53,8 +53,8 @@ cli_test(bad.yaml_empty 2 "${E}.*empty.yaml: scene: required key missing" run ${
 cli_test(bad.yaml_list 2 "${E}.*list.yaml:1: expected a mapping of config keys .*, got a list" run ${BAD}/list.yaml)
 cli_test(bad.yaml_binary 2 "${E}.*binary.yaml:1: expected a mapping of config keys" run ${BAD}/binary.yaml --set output.dir=out)
 cli_test(bad.yaml_syntax 2 "${E}.*syntax_error.yaml:3: YAML syntax error" run ${BAD}/syntax_error.yaml)
-cli_test(bad.yaml_threads_zero 2 "${E}.*threads_zero.yaml:3: threads: expected an integer in \\[1, 1024\\], got '0'" run ${BAD}/threads_zero.yaml)
-cli_test(bad.yaml_threads_huge 2 "${E}.*threads_huge.yaml:3: threads: expected an integer in \\[1, 1024\\], got '100000'" run ${BAD}/threads_huge.yaml)
+cli_test(bad.yaml_threads_zero 2 "${E}.*threads_zero.yaml:3: threads: expected an integer from 1 to 1024, got '0'" run ${BAD}/threads_zero.yaml)
+cli_test(bad.yaml_threads_huge 2 "${E}.*threads_huge.yaml:3: threads: expected an integer from 1 to 1024, got '100000'" run ${BAD}/threads_huge.yaml)
 cli_test(bad.yaml_directory 2 "${E}.*bad_inputs: cannot open file \\(it is a directory, expected a file\\)" run ${BAD})
 # A bad last frame is found before the first step: no result files are left behind (checked by the regex on
 # the absence of the table's summary line).

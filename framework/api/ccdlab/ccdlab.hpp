@@ -36,7 +36,9 @@ struct MeshFile {
 /// the line (text) or element (binary) on any malformed input.
 MeshFile read_mesh(const std::filesystem::path& path);
 
-/// How a Detector works: the keys of an experiment's strategy section (docs/config.md), each a plain field.
+/// How a Detector works: the keys of an experiment's strategy section (docs/config.md), each a plain field. The
+/// defaults are the pipeline's own (framework/pipeline/pipeline_settings.hpp), spelled here with the standard
+/// library only; a test holds the two equal.
 /// Strategy fields take a name or "name:key=value,…" (e.g. "conservative:delta=1e-9"); they are checked against
 /// the registries when a Detector is made, with the same messages as a YAML file.
 struct Options {

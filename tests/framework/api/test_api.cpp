@@ -8,6 +8,7 @@
 #include <string>
 
 #include "ccdlab/ccdlab.hpp"
+#include "framework/config/pipeline_config.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
 #include "strategies/registry.hpp"
 #include "support/test_meshes.hpp"
@@ -71,7 +72,25 @@ TEST(Api, OptionErrorsAreLocated) {
   EXPECT_NE(error_of([&] { Detector d(faces, o); }).find("Options::narrow"), std::string::npos);
   o = Options{};
   o.end_boxes = "yes";
-  EXPECT_NE(error_of([&] { Detector d(faces, o); }).find("Options::end_boxes: expected on, off or auto"), std::string::npos);
+  EXPECT_NE(error_of([&] { Detector d(faces, o); }).find("Options::end_boxes: expected on, off, auto, true or false"), std::string::npos);
+}
+
+TEST(Api, OptionsDefaultsAreThePipelinesDefaults) {
+  // The public header spells its defaults with the standard library only; they must be PipelineConfig's, the one
+  // place the pipeline's defaults are written (framework/pipeline/pipeline_settings.hpp).
+  const Options o;
+  const PipelineConfig c;
+  EXPECT_EQ(o.k, c.k);
+  EXPECT_EQ(o.width, c.width);
+  EXPECT_EQ(o.threads, c.threads);
+  EXPECT_EQ(o.normal_cones, c.normal_cones);
+  EXPECT_EQ(o.end_boxes, to_string(c.end_boxes));
+  EXPECT_EQ(o.hierarchy, c.hierarchy.name);
+  EXPECT_EQ(o.scheduler, c.scheduler.name);
+  EXPECT_EQ(o.tester, c.tester.name);
+  EXPECT_EQ(o.narrow, to_string(c.narrow.mode));
+  EXPECT_EQ(o.representative, to_string(c.narrow.representative));
+  EXPECT_EQ(o.memory_limit, c.memory_limit);
 }
 
 TEST(Api, DetectorFindsThePipelinesContactsForEveryScheduler) {

@@ -68,10 +68,10 @@ TEST_F(Config, UnknownKeysAreLocatedWithAHint) {
 TEST_F(Config, WrongTypesAndValuesAreLocated) {
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\nbv:\n  k: 7\n"), "exp.yaml:3: bv.k: expected one of 6, 14, 18, 26, got '7'");
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\nbv: {end_boxes: sometimes}\n"),
-            "exp.yaml:2: bv.end_boxes: expected true, false or auto, got 'sometimes'");
+            "exp.yaml:2: bv.end_boxes: expected on, off, auto, true or false, got 'sometimes'");
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\nthreads: many\n"), "exp.yaml:2: threads: expected an integer, got 'many'");
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\nthreads: 0\n"),
-            "exp.yaml:2: threads: expected an integer in [1, 1024], got '0'");
+            "exp.yaml:2: threads: expected an integer from 1 to 1024, got '0'");
   EXPECT_EQ(error_of("scene: {builtin: drape_fold, resolution: 2.5}\n"),
             "exp.yaml:1: scene.resolution: expected an integer, got '2.5'");
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\ntester: {name: float, thickness: -1}\n"),

@@ -162,6 +162,14 @@ TEST(SimScene, ErrorsNameTheFileLineAndKey) {
   // An effect whose parameters select nothing is refused when the simulator sets it up.
   const std::string path = write_scene("pin.yaml", base);
   EXPECT_THROW(simulate(path, {"effects=[{name: pin, min_x: 5}]"}), Error);
+  // ccd_contact's k is checked by the pipeline settings' one check when the effect is made, not later.
+  try {
+    (void)make_simulator(load_sim_scene(path, {"effects=[{name: ccd_contact, k: 7}]"}, effect_registry()),
+                         TriMesh(9, {{0, 1, 4}}));
+    ADD_FAILURE() << "k = 7 accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("ccd_contact: k: expected one of 6, 14, 18, 26, got 7"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SimScene, ACapsuleChainMovesInItsParentsFrameAndMotionsAreHashed) {

@@ -1,0 +1,81 @@
+#pragma once
+// A pipeline's settings as plain values: every default written once, every value checked once (validate),
+// whoever fills them in — the experiment config (framework/config/pipeline_config.hpp: YAML and --set),
+// `ccdlab step`'s flags, the C++ API's Options, the Python module's keywords and the simulator's ccd_contact
+// effect. The strategies themselves (builder, scheduler, tester) are chosen by name at those entry points and
+// made from their registries, whose parameter defaults are the strategies' own Params.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+
+#include "framework/geometry/kdop.hpp"
+#include "framework/hierarchy/wide_bvh.hpp"
+#include "framework/narrow/narrow_phase.hpp"
+#include "framework/util/named_values.hpp"
+
+namespace ccdlab {
+
+/// bv.end_boxes (framework/swept/end_boxes.hpp): test the nodes' boxes at both ends of the step in every
+/// step (`on`), never (`off`), or in the steps where they pay (`automatic`, written `auto`: EndBoxRule).
+enum class EndBoxMode { off, on, automatic };
+/// bv.end_boxes's names (YAML's booleans true and false among them).
+inline constexpr NamedValues<EndBoxMode, 5> kEndBoxModes{{{{"on", EndBoxMode::on},
+                                                           {"off", EndBoxMode::off},
+                                                           {"auto", EndBoxMode::automatic},
+                                                           {"true", EndBoxMode::on},
+                                                           {"false", EndBoxMode::off}}}};
+[[nodiscard]] inline std::string_view to_string(EndBoxMode m) { return kEndBoxModes.name_of(m); }
+
+/// The strategies a configuration names when it names none (their parameters: the registries' defaults), and the
+/// memory limit's default text (parse_memory_size).
+inline constexpr const char* kDefaultHierarchy = "median";
+inline constexpr const char* kDefaultScheduler = "sequential";
+inline constexpr const char* kDefaultTester = "float";
+inline constexpr const char* kDefaultMemoryLimit = "80%";
+
+/// How an entry point spells a setting in its messages, given its config key ("bv.k"): YAML writes the key, the
+/// CLI its flag ("--k"), the C++ API its member ("Options::k"). Empty: the key.
+using SettingName = std::function<std::string(std::string_view key)>;
+
+struct PipelineSettings {
+  int k = 18;                    ///< bv.k: the k-DOP (KdopKs)
+  int width = kDefaultBvhWidth;  ///< bv.width: 2 (binary) or 4 (framework/hierarchy/wide_bvh.hpp)
+  int threads = 1;               ///< threads for every stage
+  /// The thread count the BVTT is split for (phc and static cut c·N tasks); 0 = `threads`. `ccdlab bench` runs
+  /// 1 thread with split_threads = N to record the tasks N cores would get, so the simulator replays them.
+  int split_threads = 0;
+  /// restructure.threshold: rebuild a sub-tree when its quality (Σ sizes of inner nodes ÷ size of its root)
+  /// exceeds this × its value at the last (re)build. 0 = off.
+  double restructure_threshold = 0;
+  /// normal_cones: continuous normal-cone culling of self tests (framework/traversal/normal_cones.hpp); thickness 0 only.
+  bool normal_cones = false;
+  /// bv.end_boxes: the traversal also drops node pairs apart on x, y or z at both ends of the step. Needs the
+  /// tester's reach (PrimitiveTester::cull_reach); off for a tester without one.
+  EndBoxMode end_boxes = EndBoxMode::automatic;
+  /// Bytes the process may hold resident during a step (0 = no limit), resolved from memory_limit's text: above the
+  /// predicted need, a step streams its candidates to the narrow phase slice by slice (memory_budget.hpp).
+  std::uint64_t memory_limit_bytes = 0;
+  /// Stream every step in (about) this many slices per pass, whatever the memory: to test streaming and to
+  /// measure its cost. 0 = only when the memory limit asks for it.
+  std::size_t stream_slices = 0;
+  /// narrow {mode, representative}: how the narrow phase runs (framework/narrow/).
+  NarrowOptions narrow;
+
+  /// The one check of the plain settings: throws Error "<name(key)>: expected …, got …" for the first wrong one.
+  void validate(const SettingName& name = {}) const;
+};
+
+/// What is wrong with one setting's value, as the "expected …" text of a message; empty when it is valid.
+/// PipelineSettings::validate and the YAML reader (which adds the line) both ask these: each valid set is
+/// written here only.
+namespace setting_check {
+[[nodiscard]] std::string k(long long k);
+[[nodiscard]] std::string width(long long w);
+[[nodiscard]] std::string threads(long long t);
+[[nodiscard]] std::string split_threads(long long t);
+[[nodiscard]] std::string restructure_threshold(double t);
+}  // namespace setting_check
+
+}  // namespace ccdlab
