@@ -87,7 +87,7 @@ void BM_Traverse(benchmark::State& state) {
   (void)p->step(f.x0, f.x1);  // builds and refits
   const BvhTopology& bvh = p->bvh(0);
   const AnyBvs& node_bvs = p->node_bvs(0);
-  time_sequential_traversal(state, TraversalPass{0, &p->mesh(), &bvh, &node_bvs, &bvh, &node_bvs, true, 1});
+  time_sequential_traversal(state, TraversalPass{0, &p->mesh(), {&bvh, &node_bvs}, {&bvh, &node_bvs}, true, 1});
 }
 BENCHMARK(BM_Traverse)->Arg(6)->Arg(14)->Arg(18)->Arg(26)->Unit(benchmark::kMillisecond);
 

@@ -111,10 +111,10 @@ int export_command(const ExportOptions& o) {
   for (std::size_t p = 0; p < pipeline.passes().size(); ++p) {
     const TraversalPass& pass = pipeline.passes()[p];
     const std::vector<FrontNode> none;
-    const auto change = classify_front(*pass.bvh_a, *pass.bvh_b, before.empty() ? none : before[p], after[p]);
+    const auto change = classify_front(*pass.side_a.bvh, *pass.side_b.bvh, before.empty() ? none : before[p], after[p]);
     for (FrontChange c : change) ++changes[std::size_t(c)];
     const std::string name = fmt::format("front_pass{}.vtu", p);
-    front_grid(*pass.bvh_a, *pass.bvs_a, *pass.bvh_b, *pass.bvs_b,
+    front_grid(*pass.side_a.bvh, *pass.side_a.bvs, *pass.side_b.bvh, *pass.side_b.bvs,
                after[p], change)
         .write(path(name), "--out");
     front_files.push_back(name);

@@ -64,6 +64,14 @@ class BodyHierarchy {
   /// With end boxes on: every node's EndBoxes, and (width 4) every record's lanes' (WideEnds); empty otherwise.
   [[nodiscard]] const BvArray<EndBoxes>& node_ends() const { return node_ends_; }
   [[nodiscard]] const WideEndsArray& wide_ends() const { return wide_ends_; }
+  /// The hierarchy as a traversal pass reads it: the binary volumes, with the wide view (`wide`) and the end
+  /// boxes (`ends`) where the pipeline uses them. Its pointers stay valid for the hierarchy's lifetime.
+  [[nodiscard]] PassSide side(bool wide, bool ends) const {
+    PassSide s{&bvh_, &node_bvs_};
+    if (wide) s.wide_layout = &wide_layout_, s.wide = &node_wide_;
+    if (ends) s.ends = &node_ends_, s.wide_ends = wide ? &wide_ends_ : nullptr;
+    return s;
+  }
   [[nodiscard]] const std::vector<Index>& skip_root() const { return skip_root_; }
   [[nodiscard]] bool has_cones() const { return cones_ != nullptr; }
   [[nodiscard]] std::uint64_t contour_edge_tests() const { return cones_ ? cones_->contour_edge_tests() : 0; }

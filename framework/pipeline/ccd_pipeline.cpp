@@ -62,20 +62,11 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
   const auto add_pass = [&](int i, int j) {
     const BodyHierarchy& a = bodies_[i];
     const BodyHierarchy& b = bodies_[j];
-    TraversalPass pass{int(traversal_.passes().size()), &mesh_, &a.bvh(), &a.node_bvs(), &b.bvh(), &b.node_bvs(), i == j,
+    const bool wide = strategies_.width == 4, ends = end_boxes_kept();
+    TraversalPass pass{int(traversal_.passes().size()), &mesh_, a.side(wide, ends), b.side(wide, ends), i == j,
                        strategies_.threads};
     pass.split_threads = strategies_.split_threads > 0 ? strategies_.split_threads : strategies_.threads;
     if (i == j && strategies_.normal_cones) pass.skip_root = &a.skip_root();
-    if (strategies_.width == 4) {
-      pass.wide_layout_a = &a.wide_layout();
-      pass.wide_a = &a.node_wide();
-      pass.wide_layout_b = &b.wide_layout();
-      pass.wide_b = &b.node_wide();
-    }
-    if (end_boxes_kept()) {
-      pass.ends_a = &a.node_ends(), pass.ends_b = &b.node_ends();
-      if (strategies_.width == 4) pass.wide_ends_a = &a.wide_ends(), pass.wide_ends_b = &b.wide_ends();
-    }
     traversal_.add_pass(pass);
   };
   for (int i = 0; i < int(bl.size()); ++i)

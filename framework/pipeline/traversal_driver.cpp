@@ -60,7 +60,7 @@ double TraversalDriver::run_streamed(const MemoryPlan& plan, const NarrowDriver&
   // A memory-bounded step keeps no scheduler state across steps: the pass's own is released too.
   for (const TraversalPass& pass : passes_) {
     scheduler_.release(pass.id);
-    if (pass.bvh_a->nodes.empty() || pass.bvh_b->nodes.empty()) continue;
+    if (pass.side_a.bvh->nodes.empty() || pass.side_b.bvh->nodes.empty()) continue;
     auto t = Clock::now();
     std::vector<BvttNode> slices;
     with_bvtt_view(pass, [&](const auto& view) { slices = expand_breadth_first(view, plan.slices, candidates_); });

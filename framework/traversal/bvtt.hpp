@@ -25,10 +25,10 @@ namespace ccdlab {
 template <class BV>
 void traverse_bvtt_binary(const BvttView<BV>& v, BvttNode start, std::vector<BvttNode>& stack, FacePairs& pairs,
                           std::uint64_t& bv_tests_out) {
-  const BvhNode* const na = v.bvh_a->nodes.data();
-  const BvhNode* const nb = v.bvh_b->nodes.data();
-  const BV* const bva = v.bv_a->data();
-  const BV* const bvb = v.bv_b->data();
+  const BvhNode* const na = v.side_a.bvh->nodes.data();
+  const BvhNode* const nb = v.side_b.bvh->nodes.data();
+  const BV* const bva = v.side_a.bv->data();
+  const BV* const bvb = v.side_b.bv->data();
   const bool self = v.self;
   std::uint64_t bv_tests = 0;
   // The stack grows by at most 2 per visit; room for 2 more is checked before each visit. It starts small, so

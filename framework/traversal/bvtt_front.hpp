@@ -35,6 +35,11 @@ using FrontPiece = UninitializedVector<FrontNode>;
 
 struct FrontCounters {
   std::uint64_t bv_tests = 0, visited = 0, sprouted = 0, pruned = 0;
+  /// The one merge of two walks' counters (a walk's local ones into its caller's, the threads' into the pass's).
+  FrontCounters& operator+=(const FrontCounters& o) {
+    bv_tests += o.bv_tests, visited += o.visited, sprouted += o.sprouted, pruned += o.pruned;
+    return *this;
+  }
 };
 
 /// The front a rebuild starts from, covering the BVTT below `root` (the whole BVTT, or one slice of a
@@ -55,11 +60,11 @@ void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNod
                    FrontPiece& next, std::size_t piece_begin, FacePairs& pairs, std::vector<BvttNode>& stack,
                    FrontCounters& counters) {
   FrontCounters c;  // local: the caller's counters are written once, at the end
-  const BvhNode* const na = v.bvh_a->nodes.data();
-  const BvhNode* const nb = v.bvh_b->nodes.data();
-  const BV* const bva = v.bv_a->data();
-  const BV* const bvb = v.bv_b->data();
-  const BvhTopology& tree_a = *v.bvh_a;
+  const BvhNode* const na = v.side_a.bvh->nodes.data();
+  const BvhNode* const nb = v.side_b.bvh->nodes.data();
+  const BV* const bva = v.side_a.bv->data();
+  const BV* const bvb = v.side_b.bv->data();
+  const BvhTopology& tree_a = *v.side_a.bvh;
   const bool self = v.self;
   // An overlapping leaf pair: a candidate, and it stays on the front — unless adjacent (then neither).
   auto emit = [&](const BvhNode& A, const BvhNode& B, Index a, Index b, std::uint8_t flags) {
@@ -146,10 +151,7 @@ void process_front(const BvttView<BV>& v, const FrontNode* begin, const FrontNod
       stack.pop_back();
     }
   }
-  counters.bv_tests += c.bv_tests;
-  counters.visited += c.visited;
-  counters.sprouted += c.sprouted;
-  counters.pruned += c.pruned;
+  counters += c;
 }
 
 }  // namespace ccdlab

@@ -17,8 +17,8 @@ namespace ccdlab {
 template <class BV>
 std::vector<BvttNode> expand_breadth_first(const BvttView<BV>& v, std::size_t want, TraversalOutput& out,
                                            BvttNode root = {0, 0}) {
-  const auto& na = v.bvh_a->nodes;
-  const auto& nb = v.bvh_b->nodes;
+  const auto& na = v.side_a.bvh->nodes;
+  const auto& nb = v.side_b.bvh->nodes;
   std::vector<BvttNode> level{root}, next;
   while (!level.empty() && level.size() < want) {
     next.clear();
@@ -123,7 +123,7 @@ namespace ccdlab {
 /// equal-count chunks in breadth-first order).
 inline void split_and_run(const TraversalPass& pass, int tasks_per_thread, Distribution dist, const char* phase,
                           TraversalOutput& out, std::vector<PhaseTrace>& traces, TaskCosts* costs = nullptr) {
-  if (pass.bvh_a->nodes.empty() || pass.bvh_b->nodes.empty()) return;
+  if (pass.side_a.bvh->nodes.empty() || pass.side_b.bvh->nodes.empty()) return;
   with_bvtt_view(pass, [&](const auto& view) {
     PhaseTrace trace{phase, dist, 0, {}, {}};
     const auto t0 = std::chrono::steady_clock::now();

@@ -14,38 +14,39 @@ struct BvttNode {
   Index b;
 };
 
+/// One hierarchy as a walk reads it, at its static BV type.
+template <class BV>
+struct BvttSide {
+  const BvhTopology* bvh = nullptr;
+  const BvArray<BV>* bv = nullptr;
+  /// The 4-wide view (bv.width: 4), or nullptr: traverse_bvtt then walks the binary tree.
+  const WideLayout* wide_layout = nullptr;
+  const WideBvs<BV>* wide = nullptr;
+  /// End boxes of the nodes (framework/swept/end_boxes.hpp), or nullptr: then only the k-DOPs decide whether two
+  /// nodes overlap; and the same per wide record (width 4 with end boxes).
+  const EndBoxes* ends = nullptr;
+  const WideEnds* wide_ends = nullptr;
+};
+
 /// Two BVHs (or one, twice) with their refit volumes: what a traversal reads.
 template <class BV>
 struct BvttView {
-  const BvhTopology* bvh_a;
-  const BvArray<BV>* bv_a;
-  const BvhTopology* bvh_b;  ///< == bvh_a for self-collision
-  const BvArray<BV>* bv_b;
-  const TriMesh* mesh;
-  bool self;  ///< self-collision: skip adjacent face pairs
+  BvttSide<BV> side_a;
+  BvttSide<BV> side_b;  ///< == side_a for self-collision
+  const TriMesh* mesh = nullptr;
+  bool self = true;  ///< self-collision: skip adjacent face pairs
   /// Normal-cone culling (self passes): topmost ancestor-or-self of each node whose self test is skipped this
   /// step, −1 if none; nullptr when culling is off. See normal_cones.hpp.
   const Index* skip_root = nullptr;
-  /// The 4-wide views of both hierarchies (bv.width: 4), or nullptr: traverse_bvtt then walks the binary tree.
-  const WideLayout* wide_layout_a = nullptr;
-  const WideBvs<BV>* wide_a = nullptr;
-  const WideLayout* wide_layout_b = nullptr;
-  const WideBvs<BV>* wide_b = nullptr;
-  /// End boxes of both hierarchies' nodes (framework/swept/end_boxes.hpp), or nullptr: then only the k-DOPs
-  /// decide whether two nodes overlap.
-  const EndBoxes* ends_a = nullptr;
-  const EndBoxes* ends_b = nullptr;
-  /// The same, per wide record (width 4 with end boxes).
-  const WideEnds* wide_ends_a = nullptr;
-  const WideEnds* wide_ends_b = nullptr;
-  [[nodiscard]] bool wide() const { return wide_a && wide_b; }
+  [[nodiscard]] bool wide() const { return side_a.wide && side_b.wide; }
   /// The lane-pair walk of the wide view (traverse_bvtt_lane_pairs) to take, if any: set where the view is
   /// made, from lane_pair_walk(), so that a traversal call does not ask again.
   LanePairWalk lane_pairs = LanePairWalk::none;
   /// THE test of a pair node (a, b), every binary walk's: their k-DOPs overlap and, with end boxes, they are not
   /// apart at both ends. (The wide walks test the same on a record's lanes: wide_overlap.hpp.)
   [[nodiscard]] bool nodes_overlap(Index a, Index b) const {
-    return (*bv_a)[a].overlaps((*bv_b)[b]) && !(ends_a && apart_at_both_ends(ends_a[a], ends_b[b]));
+    return (*side_a.bv)[a].overlaps((*side_b.bv)[b]) &&
+           !(side_a.ends && apart_at_both_ends(side_a.ends[a], side_b.ends[b]));
   }
   /// Appends the candidate of two overlapping leaves (ordered (min, max) in self passes; none when adjacent).
   /// Returns whether one was appended.
@@ -87,7 +88,7 @@ struct BvttView {
     return {{{n.a, B.left}, {n.a, B.right}, {}}, 2};
   }
   [[nodiscard]] Children pair_children(BvttNode n) const {
-    return pair_children(n, bvh_a->nodes[n.a], bvh_b->nodes[n.b], (*bv_a)[n.a], (*bv_b)[n.b]);
+    return pair_children(n, side_a.bvh->nodes[n.a], side_b.bvh->nodes[n.b], (*side_a.bv)[n.a], (*side_b.bv)[n.b]);
   }
   /// The descent rule of a pair node: split a (true) or b (false) — the larger by size_measure, never a leaf.
   [[nodiscard]] static bool descend_a(const BvhNode& A, const BvhNode& B, const BV& va, const BV& vb) {
@@ -97,7 +98,7 @@ struct BvttView {
   [[nodiscard]] bool in_skipped_patch(Index a, Index b) const {
     if (!skip_root) return false;
     const Index q = skip_root[a];
-    return q >= 0 && b >= q && b < bvh_a->subtree_end(q);
+    return q >= 0 && b >= q && b < side_a.bvh->subtree_end(q);
   }
 };
 

@@ -55,17 +55,17 @@ template <class BV>
 void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideBvttEntry>& stack, FacePairs& pairs,
                         std::uint64_t& bv_tests_out) {
   constexpr int W = WideLayout::kWidth;
-  const BvhNode* const na = v.bvh_a->nodes.data();
-  const BV* const bva = v.bv_a->data();
-  const BV* const bvb = v.bv_b->data();
-  const Index* const slot_a = v.wide_layout_a->slot.data();
-  const Index* const slot_b = v.wide_layout_b->slot.data();
-  const Index* const home_a = v.wide_layout_a->home.data();
-  const Index* const home_b = v.wide_layout_b->home.data();
-  const WideBounds<BV>* const wide_a = v.wide_a->data();
-  const WideBounds<BV>* const wide_b = v.wide_b->data();
-  const WideEnds* const wide_ends_a = v.wide_ends_a;  // end boxes on: both, else neither
-  const WideEnds* const wide_ends_b = v.wide_ends_b;
+  const BvhNode* const na = v.side_a.bvh->nodes.data();
+  const BV* const bva = v.side_a.bv->data();
+  const BV* const bvb = v.side_b.bv->data();
+  const Index* const slot_a = v.side_a.wide_layout->slot.data();
+  const Index* const slot_b = v.side_b.wide_layout->slot.data();
+  const Index* const home_a = v.side_a.wide_layout->home.data();
+  const Index* const home_b = v.side_b.wide_layout->home.data();
+  const WideBounds<BV>* const wide_a = v.side_a.wide->data();
+  const WideBounds<BV>* const wide_b = v.side_b.wide->data();
+  const WideEnds* const wide_ends_a = v.side_a.wide_ends;  // end boxes on: both, else neither
+  const WideEnds* const wide_ends_b = v.side_b.wide_ends;
   const Index* const skip_root = v.skip_root;
   const bool self = v.self;
   std::uint64_t bv_tests = 0;
@@ -214,7 +214,7 @@ struct LanePairCursor {
   Index* col_wb;
   std::size_t top;  ///< entries on the stack
   FacePair* pout;   ///< where the next candidate goes (room for W · W more, checked by the caller)
-  const WideEnds* ends_a;  ///< end boxes of the records' lanes (BvttView::wide_ends_a), or nullptr
+  const WideEnds* ends_a;  ///< end boxes of the records' lanes (BvttSide::wide_ends), or nullptr
   const WideEnds* ends_b;
 };
 

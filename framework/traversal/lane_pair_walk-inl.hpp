@@ -14,18 +14,18 @@ template <class BV>
 CCDLAB_WALK_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode start, LanePairStack& stack,
                                                    FacePairs& pairs, std::uint64_t& bv_tests_out) {
   constexpr int W = WideLayout::kWidth;
-  const BvhNode* const na = v.bvh_a->nodes.data();
-  const Index* const slot_a = v.wide_layout_a->slot.data();
-  const Index* const slot_b = v.wide_layout_b->slot.data();
-  const Index* const home_a = v.wide_layout_a->home.data();
-  const Index* const home_b = v.wide_layout_b->home.data();
-  const WideBounds<BV>* const wide_a = v.wide_a->data();
-  const WideBounds<BV>* const wide_b = v.wide_b->data();
+  const BvhNode* const na = v.side_a.bvh->nodes.data();
+  const Index* const slot_a = v.side_a.wide_layout->slot.data();
+  const Index* const slot_b = v.side_b.wide_layout->slot.data();
+  const Index* const home_a = v.side_a.wide_layout->home.data();
+  const Index* const home_b = v.side_b.wide_layout->home.data();
+  const WideBounds<BV>* const wide_a = v.side_a.wide->data();
+  const WideBounds<BV>* const wide_b = v.side_b.wide->data();
   const Index* const skip_root = v.skip_root;
   const bool self = v.self;
   std::uint64_t bv_tests = 0;
   // A visit pushes at most 16 pair nodes, or 2 for a self node; room is checked before each visit.
-  LanePairCursor cur{nullptr, nullptr, nullptr, nullptr, 0, nullptr, v.wide_ends_a, v.wide_ends_b};
+  LanePairCursor cur{nullptr, nullptr, nullptr, nullptr, 0, nullptr, v.side_a.wide_ends, v.side_b.wide_ends};
   const auto make_room = [&](std::size_t n) {
     stack.reserve(n, cur.top);
     cur.col_ha = stack.column(0), cur.col_hb = stack.column(1), cur.col_wa = stack.column(2), cur.col_wb = stack.column(3);

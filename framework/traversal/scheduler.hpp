@@ -33,37 +33,48 @@ inline AnyWideBvs make_wide_bvs(int k) {
   fail("bv.k: expected one of {}, got {}", kKdopKs, k);
 }
 
+/// One hierarchy of a pass as the pipeline hands it over: its topology and node volumes and, where the pipeline
+/// keeps them, its 4-wide view (bv.width: 4, refit with the binary volumes) and end boxes (framework/swept/
+/// end_boxes.hpp, of the nodes and of the wide records' lanes). BodyHierarchy::side fills one in.
+struct PassSide {
+  const BvhTopology* bvh = nullptr;
+  const AnyBvs* bvs = nullptr;
+  const WideLayout* wide_layout = nullptr;
+  const AnyWideBvs* wide = nullptr;
+  const BvArray<EndBoxes>* ends = nullptr;
+  const WideEndsArray* wide_ends = nullptr;
+};
+
 /// One traversal pass of a step: a BVH against itself (self-collision) or against another body's BVH.
 /// `id` is stable across steps so stateful schedulers (e.g. a BVTT front) can keep per-pass data.
 struct TraversalPass {
   int id = 0;
   const TriMesh* mesh = nullptr;
-  const BvhTopology* bvh_a = nullptr;
-  const AnyBvs* bvs_a = nullptr;
-  const BvhTopology* bvh_b = nullptr;  ///< == bvh_a for self passes
-  const AnyBvs* bvs_b = nullptr;
+  PassSide side_a;
+  PassSide side_b;  ///< == side_a for self passes
   bool self = true;
   int threads = 1;  ///< OpenMP threads the scheduler may use
   int split_threads = 1;  ///< threads a decomposition is cut for (== threads, except when bench records traces)
   const std::vector<Index>* skip_root = nullptr;  ///< normal-cone culling of self tests (self passes), or none
-  /// The 4-wide views of both hierarchies (bv.width: 4), refit with the binary volumes; nullptr for width 2.
-  /// traverse_bvtt walks them when both are there; the front scheduler keeps its binary front either way.
-  const WideLayout* wide_layout_a = nullptr;
-  const AnyWideBvs* wide_a = nullptr;
-  const WideLayout* wide_layout_b = nullptr;
-  const AnyWideBvs* wide_b = nullptr;
-  /// End boxes (framework/swept/end_boxes.hpp) of both hierarchies' nodes, and of the wide records' lanes
-  /// (width 4), or nullptr when the pipeline keeps none; the walks test them in the steps that set `test_ends`
-  /// (the pipeline refits them in those steps only).
-  const BvArray<EndBoxes>* ends_a = nullptr;
-  const BvArray<EndBoxes>* ends_b = nullptr;
-  const WideEndsArray* wide_ends_a = nullptr;
-  const WideEndsArray* wide_ends_b = nullptr;
+  /// Whether the walks test the end boxes in this step (the pipeline refits them in those steps only).
   bool test_ends = false;
   /// Where the traversal starts: the BVTT root, or one slice of it when a memory-bounded step streams its
   /// candidates to the narrow phase slice by slice (CcdPipeline; a slice has a negative `id`, released after it).
   BvttNode root{0, 0};
 };
+
+/// A side's arrays at their static type BV (`ends`: whether this step tests end boxes).
+template <class BV>
+BvttSide<BV> bvtt_side(const PassSide& s, bool ends) {
+  BvttSide<BV> out{s.bvh, &std::get<BvArray<BV>>(*s.bvs)};
+  if (ends && s.ends) out.ends = s.ends->data();
+  if (s.wide) {
+    out.wide_layout = s.wide_layout;
+    out.wide = &std::get<WideBvs<BV>>(*s.wide);
+    if (ends && s.ends && s.wide_ends) out.wide_ends = s.wide_ends->data();
+  }
+  return out;
+}
 
 /// Calls f(BvttView<BV>) with the pass's volumes at their static type: the one place a scheduler dispatches on K.
 template <class F>
@@ -71,23 +82,21 @@ void with_bvtt_view(const TraversalPass& pass, F&& f) {
   std::visit(
       [&](const auto& bvs_a) {
         using BV = typename std::decay_t<decltype(bvs_a)>::value_type;
-        const auto& bvs_b = std::get<BvArray<BV>>(*pass.bvs_b);
         const Index* skip = pass.skip_root && !pass.skip_root->empty() ? pass.skip_root->data() : nullptr;
-        BvttView<BV> view{pass.bvh_a, &bvs_a, pass.bvh_b, &bvs_b, pass.mesh, pass.self, skip};
-        const bool ends = pass.test_ends && pass.ends_a && pass.ends_b;
-        if (ends) view.ends_a = pass.ends_a->data(), view.ends_b = pass.ends_b->data();
-        if (pass.wide_a && pass.wide_b) {
-          view.wide_layout_a = pass.wide_layout_a;
-          view.wide_a = &std::get<WideBvs<BV>>(*pass.wide_a);
-          view.wide_layout_b = pass.wide_layout_b;
-          view.wide_b = &std::get<WideBvs<BV>>(*pass.wide_b);
-          view.lane_pairs = lane_pair_walk();
-          if (ends && pass.wide_ends_a && pass.wide_ends_b)
-            view.wide_ends_a = pass.wide_ends_a->data(), view.wide_ends_b = pass.wide_ends_b->data();
+        // End boxes only where both sides keep them; a wide walk only where both sides have the wide view.
+        const bool ends = pass.test_ends && pass.side_a.ends && pass.side_b.ends;
+        BvttView<BV> view{bvtt_side<BV>(pass.side_a, ends), bvtt_side<BV>(pass.side_b, ends), pass.mesh, pass.self, skip};
+        if (!(view.side_a.wide && view.side_b.wide)) {
+          view.side_a.wide = view.side_b.wide = nullptr;
+          view.side_a.wide_layout = view.side_b.wide_layout = nullptr;
+          view.side_a.wide_ends = view.side_b.wide_ends = nullptr;
+        } else if (!(view.side_a.wide_ends && view.side_b.wide_ends)) {
+          view.side_a.wide_ends = view.side_b.wide_ends = nullptr;
         }
+        view.lane_pairs = view.wide() ? lane_pair_walk() : LanePairWalk::none;
         f(view);
       },
-      *pass.bvs_a);
+      *pass.side_a.bvs);
 }
 
 class TraversalScheduler {

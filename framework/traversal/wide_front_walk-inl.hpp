@@ -11,14 +11,14 @@ CCDLAB_WALK_TARGET void process_wide_front(const BvttView<BV>& v, const WideFron
                                              std::size_t piece_begin, FacePairs& pairs, LanePairStack& stack,
                                              FrontCounters& counters) {
   constexpr int W = WideLayout::kWidth;
-  const WideBounds<BV>* const wide_a = v.wide_a->data();
-  const WideBounds<BV>* const wide_b = v.wide_b->data();
-  const WideLayout& la = *v.wide_layout_a;
-  const WideLayout& lb = *v.wide_layout_b;
-  const BvhNode* const na = v.bvh_a->nodes.data();
+  const WideBounds<BV>* const wide_a = v.side_a.wide->data();
+  const WideBounds<BV>* const wide_b = v.side_b.wide->data();
+  const WideLayout& la = *v.side_a.wide_layout;
+  const WideLayout& lb = *v.side_b.wide_layout;
+  const BvhNode* const na = v.side_a.bvh->nodes.data();
   const bool self = v.self;
   FrontCounters c;  // local: the caller's are written once, at the end
-  LanePairCursor cur{nullptr, nullptr, nullptr, nullptr, 0, nullptr, v.wide_ends_a, v.wide_ends_b};
+  LanePairCursor cur{nullptr, nullptr, nullptr, nullptr, 0, nullptr, v.side_a.wide_ends, v.side_b.wide_ends};
   const auto make_room = [&](std::size_t n) {
     stack.reserve(n, cur.top);
     cur.col_ha = stack.column(0), cur.col_hb = stack.column(1), cur.col_wa = stack.column(2), cur.col_wb = stack.column(3);
@@ -195,8 +195,5 @@ CCDLAB_WALK_TARGET void process_wide_front(const BvttView<BV>& v, const WideFron
   }
   pairs.resize(std::size_t(cur.pout - pairs.data()));
   next.resize(std::size_t(gout - gbase));
-  counters.bv_tests += c.bv_tests;
-  counters.visited += c.visited;
-  counters.sprouted += c.sprouted;
-  counters.pruned += c.pruned;
+  counters += c;
 }

@@ -104,7 +104,7 @@ void EmbreeScheduler::release(int pass_id) {
 }
 
 void EmbreeScheduler::collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) {
-  if (pass.bvh_a->nodes.empty() || pass.bvh_b->nodes.empty()) return;
+  if (pass.side_a.bvh->nodes.empty() || pass.side_b.bvh->nodes.empty()) return;
   const auto t0 = std::chrono::steady_clock::now();
   const bool whole = pass.root.a == 0 && pass.root.b == 0;
   const bool culled = pass.skip_root && !pass.skip_root->empty();
@@ -116,8 +116,8 @@ void EmbreeScheduler::collect(const TraversalPass& pass, TraversalOutput& out, s
     }
     state_->ensure_device(pass.threads);
     auto& [a, b] = state_->passes[pass.id];
-    state_->build(a, *view.bvh_a, *view.bv_a);
-    if (!pass.self) state_->build(b, *view.bvh_b, *view.bv_b);
+    state_->build(a, *view.side_a.bvh, *view.side_a.bv);
+    if (!pass.self) state_->build(b, *view.side_b.bvh, *view.side_b.bv);
     const Side& other = pass.self ? a : b;
     Collisions found;
     rtcCollide(a.scene, other.scene, collect_pairs, &found);
@@ -132,7 +132,7 @@ void EmbreeScheduler::collect(const TraversalPass& pass, TraversalOutput& out, s
       if (pass.self && na == nb) continue;
       ++tests;
       if (!view.nodes_overlap(na, nb)) continue;
-      view.emit_leaf_pair(view.bvh_a->nodes[na], view.bvh_b->nodes[nb], pairs);
+      view.emit_leaf_pair(view.side_a.bvh->nodes[na], view.side_b.bvh->nodes[nb], pairs);
     }
     std::sort(pairs.begin(), pairs.end());
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());

@@ -82,7 +82,7 @@ void FrontScheduler::run(const TraversalPass& pass, PassFront& front, Store<Entr
   // Room in every buffer for the whole next front (any thread may write most of it), so that no buffer grows by
   // copying into fresh memory: about this front's size, or, from seeds, the larger of kSeedGrowth times theirs
   // and kRebuildEntriesPerLeaf per leaf.
-  const std::size_t leaves = std::size_t(pass.bvh_a->num_leaves() + (pass.self ? 0 : pass.bvh_b->num_leaves()));
+  const std::size_t leaves = std::size_t(pass.side_a.bvh->num_leaves() + (pass.self ? 0 : pass.side_b.bvh->num_leaves()));
   prepare_buffers(store.spare, std::size_t(threads),
                   rebuild ? std::max(kSeedGrowth * entries_in, kRebuildEntriesPerLeaf * leaves) : entries_in + entries_in / 4);
   std::vector<typename Store<Entry>::Piece> made(tasks.size());
@@ -113,13 +113,12 @@ void FrontScheduler::run(const TraversalPass& pass, PassFront& front, Store<Entr
     entries += store.pieces[t].end - store.pieces[t].begin;
   }
   if (front.size_after_rebuild == 0) front.size_after_rebuild = front.size;
-  for (int t = 0; t < threads; ++t) {
-    const FrontCounters& c = local[t].value.counters;
-    out.bv_tests += c.bv_tests;
-    out.stats.front_visited += c.visited;
-    out.stats.sprouted += c.sprouted;
-    out.stats.pruned += c.pruned;
-  }
+  FrontCounters c;
+  for (int t = 0; t < threads; ++t) c += local[t].value.counters;
+  out.bv_tests += c.bv_tests;
+  out.stats.front_visited += c.visited;
+  out.stats.sprouted += c.sprouted;
+  out.stats.pruned += c.pruned;
   out.stats.tasks += tasks.size();
   out.stats.front_nodes += front.size;
   out.stats.front_bytes += entries * sizeof(Entry) + store.pieces.size() * sizeof(typename Store<Entry>::Piece);
@@ -127,7 +126,7 @@ void FrontScheduler::run(const TraversalPass& pass, PassFront& front, Store<Entr
 }
 
 void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) {
-  if (pass.bvh_a->nodes.empty() || pass.bvh_b->nodes.empty()) return;
+  if (pass.side_a.bvh->nodes.empty() || pass.side_b.bvh->nodes.empty()) return;
   PassFront& front = fronts_[pass.id];
   PhaseTrace trace{"traverse", Distribution::dynamic, 0, {}, {}};
   with_bvtt_view(pass, [&](const auto& view) {
@@ -140,7 +139,7 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
     const bool grown = params_.rebuild_growth > 0 && double(front.size) > params_.rebuild_growth * double(front.size_after_rebuild);
     const bool due = params_.rebuild_every > 0 && front.steps_since_rebuild >= params_.rebuild_every;
     // Adaptive restructuring changed which leaves a node covers: the front must restart (its rebuild policy).
-    const std::uint64_t version = pass.bvh_a->version + (pass.self ? 0 : pass.bvh_b->version);
+    const std::uint64_t version = pass.side_a.bvh->version + (pass.self ? 0 : pass.side_b.bvh->version);
     const bool none = wide ? front.wide.empty() : front.binary.empty();
     // End boxes turned on (bv.end_boxes: auto, CcdPipeline::end_boxes_pay): the front stops where the k-DOPs alone
     // stopped, far below where end boxes stop a walk, and pruning climbs one level a step, so start again from the
@@ -153,12 +152,12 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
       front.binary.clear();
       front.wide.clear();
       if (wide) {
-        front.layout_a = view.wide_layout_a, front.layout_b = view.wide_layout_b;
+        front.layout_a = view.side_a.wide_layout, front.layout_b = view.side_b.wide_layout;
         // Self nodes as seeds unless this step skips patches (REBUILD in bvtt_wide_front.hpp).
-        front.wide.seed(wide_front_seeds(*pass.bvh_a, *view.wide_layout_a, *pass.bvh_b, *view.wide_layout_b,
+        front.wide.seed(wide_front_seeds(*pass.side_a.bvh, *view.side_a.wide_layout, *pass.side_b.bvh, *view.side_b.wide_layout,
                                          pass.self, pass.root, view.skip_root == nullptr));
       } else {
-        front.binary.seed(initial_front(*pass.bvh_a, *pass.bvh_b, pass.self, pass.root));
+        front.binary.seed(initial_front(*pass.side_a.bvh, *pass.side_b.bvh, pass.self, pass.root));
       }
       front.steps_since_rebuild = 0;
       front.size_after_rebuild = 0;

@@ -4,7 +4,7 @@
 namespace ccdlab {
 
 void SequentialScheduler::collect(const TraversalPass& pass, TraversalOutput& out, std::vector<PhaseTrace>& traces) {
-  if (pass.bvh_a->nodes.empty() || pass.bvh_b->nodes.empty()) return;
+  if (pass.side_a.bvh->nodes.empty() || pass.side_b.bvh->nodes.empty()) return;
   with_bvtt_view(pass, [&](const auto& view) {
     BvttStack stack;
     const auto t0 = std::chrono::steady_clock::now();
