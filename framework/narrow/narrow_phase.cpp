@@ -17,7 +17,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// What each stage costs a pair it receives, in ns, from docs/narrow-phase.md's stage tables: only the ratios
+/// What each stage costs a pair it receives, in ns, from docs/appendix-narrow-phase.md's stage tables: only the ratios
 /// matter to the rule, and they move little between SIMD targets.
 struct StageNs {
   static constexpr double gather = 5;       ///< per candidate gathered
@@ -33,7 +33,7 @@ struct StageNs {
 /// many candidates per orphan: the last step's candidates, less the share stage 0 culled when it last ran if it
 /// runs in this one. A gathered candidate then checks two signatures, now and then reads a list, and brings the
 /// orphans it carries into the batch; an orphan left in the set costs its stage 1 and, when that keeps it,
-/// stages 2–4 (docs/narrow-phase.md, "The candidates carry the orphans"). A rule per step from whole-step
+/// stages 2–4 (docs/appendix-narrow-phase.md, "The candidates carry the orphans"). A rule per step from whole-step
 /// counts, as stage 0's.
 constexpr double kCarryPays = 0.25;
 std::uint64_t ns_since(Clock::time_point t) {

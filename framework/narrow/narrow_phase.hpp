@@ -38,7 +38,7 @@ inline constexpr NamedValues<NarrowMode, 2> kNarrowModes{{{{"scalar", NarrowMode
 enum class OrphanCarry { when_it_pays, always, never };
 
 /// Whether stage 0 (triangle_filter.hpp) runs in a step: when the narrow phase's counted work per candidate was
-/// smaller in the last step that ran it than in the last step that did not (docs/narrow-phase.md, "End boxes
+/// smaller in the last step that ran it than in the last step that did not (docs/appendix-narrow-phase.md, "End boxes
 /// where they pay, stage 0 by the work it saves"). Counted, not timed, and from whole steps, so that every schedule decides alike and every
 /// work counter is independent of how the candidates are cut into chunks (schedulers, threads, slices). What a
 /// culled candidate saves differs between real steps at the same cull rate — its feature pairs may die in stage 1
@@ -65,7 +65,7 @@ class TriangleStageRule {
 
 struct NarrowOptions {
   NarrowMode mode = NarrowMode::batched;
-  RepresentativeRule representative = RepresentativeRule::fixed;  // the faster with batched culling (docs/narrow-phase.md)
+  RepresentativeRule representative = RepresentativeRule::fixed;  // the faster with batched culling (docs/appendix-narrow-phase.md)
   OrphanCarry carry_orphans = OrphanCarry::when_it_pays;
 };
 

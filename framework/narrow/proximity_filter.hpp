@@ -2,7 +2,7 @@
 // Stage 4 of the batched narrow phase: the features' distance on the windows stage 3 left open.
 // A pair that reaches it may have f = 0 in a window [w/16, (w+1)/16] where the features' boxes overlap: the
 // planes (lines) meet there while the features are near. Most such pairs still never touch: edges whose lines
-// cross beyond their ends, a vertex passing a face's plane beside it (docs/narrow-phase.md, "Stage 4").
+// cross beyond their ends, a vertex passing a face's plane beside it (docs/appendix-narrow-phase.md, "Stage 4").
 //
 // In stage 2's moving frame the relative motion is linear, and every point of a feature moves with a convex
 // combination of its corners' velocities, so the distance d(t) between the features changes no faster than

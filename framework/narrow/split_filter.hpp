@@ -21,7 +21,7 @@
 namespace ccdlab {
 
 /// 2^levels windows: sixteenths for the final word; halves first, as a cheap pass that settles most pairs at a
-/// fraction of the sixteenths' cost (docs/narrow-phase.md); the sixteenths then see only the rest. Only these two
+/// fraction of the sixteenths' cost (docs/appendix-narrow-phase.md); the sixteenths then see only the rest. Only these two
 /// are compiled.
 constexpr int kSplitLevels = 4;
 constexpr int kSplitCoarseLevels = 1;

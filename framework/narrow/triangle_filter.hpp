@@ -13,7 +13,7 @@
 // The axes, cheapest first: the 26-DOP's thirteen (x, y, z, x ± y, x ± z, y ± z, x + y ± z, x − y + z,
 // −x + y + z: the projections are sums of coordinates), then each face's normal at both ends, B0×C0 + B1×C1
 // (B, C its edges from its first corner). Any axis is valid. The swept volumes the traversal tested are unions
-// over the step; at each end the two faces are often far apart (docs/narrow-phase.md counts how often). x, y and z run first on every candidate, from each face's box at both
+// over the step; at each end the two faces are often far apart (docs/appendix-narrow-phase.md counts how often). x, y and z run first on every candidate, from each face's box at both
 // ends (FloatFaceBoxes: a line a face); the other axes only on what they leave. On x, y and z a projection is a
 // coordinate, exact; on the others points are taken relative to one corner (f's first at t0), so the rounding
 // scales with the pair's size, not with the scene's.

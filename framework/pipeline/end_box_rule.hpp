@@ -6,7 +6,7 @@
 // End boxes cost every step a pass over the nodes (their refit beside the k-DOPs) and 12 more compares per node
 // pair the walk opens; they save the node pairs and the candidates they drop. Under `auto` they run in a step when
 // the last step run with them kept at most kKeepAtMost of the candidates of the last step run without them, and
-// dropped at least kDropPerFace candidates per face (docs/wide-bvh.md, "End boxes", gives the thresholds' margins
+// dropped at least kDropPerFace candidates per face (docs/appendix-wide-bvh.md, "End boxes", gives the thresholds' margins
 // on the real steps). Both counts are measured again every kRemeasure steps: one step without (step 0 mod 16), then
 // one with (1 mod 16) when the step without had enough candidates to drop. Whole-step candidate counts are the
 // same for every scheduler, width, thread count and slicing.

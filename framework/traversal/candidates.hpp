@@ -25,7 +25,7 @@ using FacePairs = UninitializedVector<FacePair>;
 /// The candidates of a step, in parts: one per thread that found them (part 0 also takes what a serial
 /// traversal or the serial top of a split BVTT finds). The candidate list is their concatenation in part
 /// order; which part a pair lands in depends on the schedule, so nothing may depend on the order (the
-/// contacts are sorted at the end of the step). Why parts, and room reserved ahead (docs/narrow-phase.md,
+/// contacts are sorted at the end of the step). Why parts, and room reserved ahead (docs/appendix-narrow-phase.md,
 /// "Memory touched once"):
 ///   - merging the threads' lists into one copies every pair into fresh pages;
 ///   - a list that grows by doubling copies itself and first-touches about twice its final size.
@@ -99,7 +99,7 @@ struct TraversalOutput {
   /// Optional; CcdPipeline sets it unless told to keep the candidates. A scheduler calls hand_over(tid)
   /// between two of its tasks: a part that holds hand_over_pairs or more goes to the consumer (the narrow
   /// phase, on the thread that found the pairs) and is emptied. The pairs are tested while still in cache,
-  /// and the list reuses a few hundred KiB instead of holding a whole step in fresh pages (docs/narrow-phase.md,
+  /// and the list reuses a few hundred KiB instead of holding a whole step in fresh pages (docs/appendix-narrow-phase.md,
   /// "Page faults, again"). What is left in the parts after collect() is the caller's.
   CandidateConsumer consumer;
   static constexpr std::size_t kHandOverPairs = std::size_t(1) << 14;  // 128 KiB: stays in L2

@@ -79,7 +79,7 @@ CCDLAB_WALK_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode
     ha = cur.col_ha[cur.top], hb = cur.col_hb[cur.top], wa = cur.col_wa[cur.top], wb = cur.col_wb[cur.top];
     // Ask for the records of the node two below the top: visited next but one when this visit pushes nothing
     // (the usual case near the leaves), or after this visit's pushes, still soon. The first read of a record is
-    // a miss; one below the top comes too late to hide it (docs/wide-bvh.md has the figures). A self
+    // a miss; one below the top comes too late to hide it (docs/appendix-wide-bvh.md has the figures). A self
     // node's entry holds its node id, not a home: id / W is then some record (ids < 2 · records), a useless but
     // harmless prefetch.
     if (cur.top >= 2) prefetch_entry_records(wide_a, wide_b, cur, cur.top - 2);

@@ -17,7 +17,7 @@ std::uint64_t peak_rss_bytes();
 void reset_peak_rss();
 
 /// Minor page faults of this process so far (getrusage), all threads: each is a first touch of a new page. On
-/// some VMs one costs microseconds (docs/narrow-phase.md, "Memory touched once"), so a step reports its own.
+/// some VMs one costs microseconds (docs/appendix-narrow-phase.md, "Memory touched once"), so a step reports its own.
 std::uint64_t minor_page_faults();
 
 /// Large arrays (node volumes, BVH nodes, build items and boxes, feature bounds, candidate lists: every

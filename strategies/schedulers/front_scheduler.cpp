@@ -143,7 +143,7 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
     const bool none = wide ? front.wide.empty() : front.binary.empty();
     // End boxes turned on (bv.end_boxes: auto, CcdPipeline::end_boxes_pay): the front stops where the k-DOPs alone
     // stopped, far below where end boxes stop a walk, and pruning climbs one level a step, so start again from the
-    // seeds (docs/wide-bvh.md has the measurement). Turned off, the front only sprouts.
+    // seeds (docs/appendix-wide-bvh.md has the measurement). Turned off, the front only sprouts.
     const bool ends_on = pass.test_ends && !front.test_ends;
     front.test_ends = pass.test_ends;
     const bool rebuild = none || grown || due || version != front.bvh_version || ends_on;

@@ -255,7 +255,7 @@ TEST(TriangleStageRule, DecidesAsTheStepsTookOnRodTwistAndNBody) {
   // The counts of the steady real steps at one thread (experiments/configs/steady/, end boxes by their rule),
   // steps 2 (with stage 0) and 3 (without): on rod-twist stage 0 culls 66% of the candidates, but their feature
   // pairs would have died in stage 1 — the step took 37 ms with it, 28 without. On n-body it culls 64%, whose
-  // pairs would have reached stage 3 — 76 ms with it, 108 without (docs/narrow-phase.md; the orphans included). A fixed cull rate
+  // pairs would have reached stage 3 — 76 ms with it, 108 without (docs/appendix-narrow-phase.md; the orphans included). A fixed cull rate
   // cannot tell the two apart; the counted work can.
   const std::size_t rod_faces = 79864, nbody_faces = 146480;
   const StepCounts rod_with{731086, 731086, 616415, 486081, 599535, 1154573, 1331349, 378194, 15323, 20630, 8612},
