@@ -17,7 +17,7 @@
 #include "framework/mesh/tri_mesh.hpp"
 #include "framework/pipeline/bodies.hpp"
 #include "framework/primitive/contact.hpp"
-#include "framework/traversal/bvtt_front.hpp"
+#include "framework/traversal/front/binary_front.hpp"
 #include "framework/traversal/scheduler.hpp"
 
 namespace ccdlab {

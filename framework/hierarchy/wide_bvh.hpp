@@ -61,7 +61,7 @@ struct WideLayout {
   /// record it has just opened, instead of in the binary array (where the wide walk's reads missed the cache).
   UninitializedVector<Index> home;
   /// Per wide node: the home of the inner node it belongs to (the node n with slot[n] == r), −1 for the top
-  /// record. The wide front (bvtt_wide_front.hpp) prunes a record pair's lane pairs back into their owners' pair,
+  /// record. The wide front (front/wide_front.hpp) prunes a record pair's lane pairs back into their owners' pair,
   /// whose k-DOPs it reads there.
   UninitializedVector<Index> owner_home;
 

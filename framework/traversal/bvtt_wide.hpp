@@ -283,7 +283,7 @@ inline constexpr CompressTable kCompress64x4 = compress_64x4();
 // lane_pair_walk-inl.hpp the walk that calls it, built with that set's function attribute.
 namespace lane_pair_avx512 {
 /// One pair visit of the lane-pair walk — THE kernel every scheduler's BVTT work goes through at width 4 (the
-/// walk below, the wide front in bvtt_wide_front.hpp), in AVX-512: the `allowed` lane pairs of records A (index ra) and B
+/// walk below, the wide front in front/wide_front.hpp), in AVX-512: the `allowed` lane pairs of records A (index ra) and B
 /// (rb) tested at once (overlapping_lane_pairs); overlapping leaf pairs written as candidates (adjacent ones
 /// dropped in self passes, the pair ordered (min, max)), the other overlapping lane pairs pushed as children with
 /// homes ra · 4 + i and rb · 4 + j (for a side restricted to one leaf lane, that is its home: it stays). No

@@ -153,7 +153,7 @@ void FrontScheduler::collect(const TraversalPass& pass, TraversalOutput& out, st
       front.wide.clear();
       if (wide) {
         front.layout_a = view.side_a.wide_layout, front.layout_b = view.side_b.wide_layout;
-        // Self nodes as seeds unless this step skips patches (REBUILD in bvtt_wide_front.hpp).
+        // Self nodes as seeds unless this step skips patches (REBUILD in front/wide_front.hpp).
         front.wide.seed(wide_front_seeds(*pass.side_a.bvh, *view.side_a.wide_layout, *pass.side_b.bvh, *view.side_b.wide_layout,
                                          pass.self, pass.root, view.skip_root == nullptr));
       } else {

@@ -1,18 +1,18 @@
 #pragma once
-// `front`: BVTT-front decomposition (the seed paper's method; front maintenance in framework/traversal/
-// bvtt_front.hpp). The front of each pass is kept across steps; each step its nodes are processed in parallel,
+// `front`: BVTT-front decomposition (the seed paper's method). This is the policy; the front's data, rules and
+// walks are one room, framework/traversal/front/ (its README gives the reading order of a step). The front of each pass is kept across steps; each step its nodes are processed in parallel,
 // in fixed-size chunks handed out dynamically, so the first traversal from the root (the serial top of `phc`)
 // disappears after the first step and the BV tests above the front are not repeated (the paper's λ).
 // The front is stored as a list of pieces in traversal order; each task takes a run of consecutive pieces
 // holding at most `chunk` entries and writes one new piece, so nothing is copied between steps and the front —
 // and the work — does not depend on the thread count.
 // At bv.width 4, where the CPU has the lane-pair walk, the front is one of record pairs with their cut lane pairs
-// (bvtt_wide_front.hpp), visited by the kernel every other scheduler's walk uses; elsewhere, and at bv.width 2
-// (the paper's original), it is the binary front of node pairs (bvtt_front.hpp).
+// (front/wide_front.hpp), visited by the kernel every other scheduler's walk uses; elsewhere, and at bv.width 2
+// (the paper's original), it is the binary front of node pairs (front/binary_front.hpp).
 #include <map>
 
-#include "framework/traversal/bvtt_front.hpp"
-#include "framework/traversal/bvtt_wide_front.hpp"
+#include "framework/traversal/front/binary_front.hpp"
+#include "framework/traversal/front/wide_front.hpp"
 #include "framework/traversal/scheduler.hpp"
 #include "framework/util/parallel.hpp"
 #include "framework/util/uninitialized_vector.hpp"

@@ -1,4 +1,4 @@
-#include "framework/traversal/bvtt_wide_front.hpp"
+#include "framework/traversal/front/wide_front.hpp"
 
 #include <algorithm>
 #include <span>

@@ -1,4 +1,4 @@
-#include "framework/traversal/bvtt_front.hpp"
+#include "framework/traversal/front/binary_front.hpp"
 
 namespace ccdlab {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The BVTT front on the 4-wide view (bv.width: 4 where the CPU has the lane-pair walk): the seed paper's front
-// (bvtt_front.hpp) walked by the same kernel as every other scheduler, visit_lane_pairs (bvtt_wide.hpp).
+// (front/binary_front.hpp) walked by the same kernel as every other scheduler, visit_lane_pairs (bvtt_wide.hpp).
 //
 // What the front holds. A BVTT node is a pair (x, y) of binary BVH nodes; in the wide view every node sits in some
 // record's lane (WideLayout::home), so a node pair is a LANE PAIR of two records. The front is a cut of the BVTT —
@@ -42,7 +42,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "framework/traversal/bvtt_front.hpp"
+#include "framework/traversal/front/binary_front.hpp"
 #include "framework/traversal/bvtt_wide.hpp"
 
 namespace ccdlab {
@@ -83,12 +83,12 @@ void append_wide_front_nodes(const WideLayout& la, const WideLayout& lb, const W
 #if defined(CCDLAB_HAS_LANE_PAIR_WALKS)
 namespace lane_pair_avx512 {
 #define CCDLAB_WALK_TARGET CCDLAB_AVX512_TARGET
-#include "framework/traversal/wide_front_walk-inl.hpp"
+#include "framework/traversal/front/wide_front_walk-inl.hpp"
 #undef CCDLAB_WALK_TARGET
 }  // namespace lane_pair_avx512
 namespace lane_pair_avx2 {
 #define CCDLAB_WALK_TARGET CCDLAB_AVX2_TARGET
-#include "framework/traversal/wide_front_walk-inl.hpp"
+#include "framework/traversal/front/wide_front_walk-inl.hpp"
 #undef CCDLAB_WALK_TARGET
 }  // namespace lane_pair_avx2
 

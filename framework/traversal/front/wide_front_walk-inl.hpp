@@ -1,4 +1,4 @@
-// The wide front's step, included by bvtt_wide_front.hpp once per instruction set inside its lane-pair
+// The wide front's step, included by front/wide_front.hpp once per instruction set inside its lane-pair
 // namespace (lane_pair_avx512, lane_pair_avx2: bvtt_wide.hpp), with CCDLAB_WALK_TARGET the set's function
 // attribute and that namespace's visit_lane_pairs in scope. No include guard: one step per inclusion.
 /// Processes groups [begin, end) (call only where the view's lane_pairs allows this instruction set): appends the next
