@@ -4,7 +4,7 @@
 //   self node (A, A)  → children (L, L), (R, R), (L, R)        — the "ternary" BVTT of the paper
 //   pair node (A, B)  → one BV overlap test; if they overlap, descend the larger node (by size_measure;
 //                       the other one if the larger is a leaf); two overlapping leaves give a candidate.
-// (The rule's one home is BvttView: self_opens, self_children, pair_children.)
+// (The rule's one home is bvtt_rule.hpp; BvttView applies it to nodes: self_opens, self_children, pair_children.)
 // Adjacent faces (sharing a vertex) are never candidates: ICCD handles their features in the orphan set.
 #include <algorithm>
 #include <bit>

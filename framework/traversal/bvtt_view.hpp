@@ -4,6 +4,7 @@
 // candidate rule of two overlapping leaves.
 #include "framework/hierarchy/bvh.hpp"
 #include "framework/hierarchy/wide_bvh.hpp"
+#include "framework/traversal/bvtt_rule.hpp"
 #include "framework/traversal/candidates.hpp"
 #include "framework/traversal/wide_overlap.hpp"
 
@@ -26,6 +27,18 @@ struct BvttSide {
   /// nodes overlap; and the same per wide record (width 4 with end boxes).
   const EndBoxes* ends = nullptr;
   const WideEnds* wide_ends = nullptr;
+};
+
+/// One side's wide view as the 4-wide walks read it: raw pointers loaded once, so that the hot loop does not
+/// reload them through the vectors.
+template <class BV>
+struct WideSideArrays {
+  explicit WideSideArrays(const BvttSide<BV>& s)
+      : slot(s.wide_layout->slot.data()), home(s.wide_layout->home.data()), records(s.wide->data()), ends(s.wide_ends) {}
+  const Index* slot;  ///< WideLayout::slot: a node's record, or ~face for a leaf
+  const Index* home;  ///< WideLayout::home: the lane that holds a node's k-DOP, record · 4 + lane
+  const WideBounds<BV>* records;
+  const WideEnds* ends;  ///< nullptr without end boxes
 };
 
 /// Two BVHs (or one, twice) with their refit volumes: what a traversal reads.
@@ -69,17 +82,13 @@ struct BvttView {
     *at = fa < fb ? FacePair{fa, fb} : FacePair{fb, fa};
     return at + int(!mesh->faces_adjacent(fa, fb));
   }
-  /// The BVTT expansion rule, its one home: every walk, task split and front opens a node through
-  /// self_opens / self_children / pair_children (the wide walks apply the same rule to a record's lanes,
-  /// bvtt_wide.hpp):
-  ///   self node (A, A), A inner and its self test not skipped    → (L, L), (R, R), (L, R)
-  ///   pair node (A, B) whose volumes overlap, not two leaves      → the two children of the side descend_a picks
-  /// Children come in visiting order: a depth-first walk visits node[0] next and stacks the others in reverse.
+  /// The expansion rule (bvtt_rule.hpp) on this view's nodes. Children come in visiting order: a depth-first
+  /// walk visits node[0] next and stacks the others in reverse.
   struct Children {
     BvttNode node[3];
     int count;
   };
-  [[nodiscard]] bool self_opens(const BvhNode& A, Index a) const { return !A.is_leaf() && !(skip_root && skip_root[a] >= 0); }
+  [[nodiscard]] bool self_opens(const BvhNode& A, Index a) const { return bvtt_rule::self_opens(A.is_leaf(), skip_root, a); }
   [[nodiscard]] static Children self_children(const BvhNode& A) {
     return {{{A.left, A.left}, {A.right, A.right}, {A.left, A.right}}, 3};
   }
@@ -90,9 +99,8 @@ struct BvttView {
   [[nodiscard]] Children pair_children(BvttNode n) const {
     return pair_children(n, side_a.bvh->nodes[n.a], side_b.bvh->nodes[n.b], (*side_a.bv)[n.a], (*side_b.bv)[n.b]);
   }
-  /// The descent rule of a pair node: split a (true) or b (false) — the larger by size_measure, never a leaf.
   [[nodiscard]] static bool descend_a(const BvhNode& A, const BvhNode& B, const BV& va, const BV& vb) {
-    return B.is_leaf() || (!A.is_leaf() && va.size_measure() >= vb.size_measure());
+    return bvtt_rule::descend_a(A.is_leaf(), B.is_leaf(), va.size_measure(), vb.size_measure());
   }
   /// Is (a, b) a pair node inside a patch whose self test is skipped?
   [[nodiscard]] bool in_skipped_patch(Index a, Index b) const {

@@ -26,8 +26,8 @@ struct WideBvttEntry {
   Index wa, wb;
   float sa, sb;
   [[nodiscard]] bool both_leaves() const { return (wa & wb) < 0; }  // slots ~face
-  /// The descent rule of a pair node (the binary one): open a's record — the larger side, never a leaf.
-  [[nodiscard]] bool descends_a() const { return wb < 0 || (wa >= 0 && sa >= sb); }
+  /// The descent rule (bvtt_rule::descend_a) on the entry: open a's record (true) or b's.
+  [[nodiscard]] bool descends_a() const { return bvtt_rule::descend_a(wa < 0, wb < 0, sa, sb); }
 };
 
 /// The 16-bit lane-pair mask (bit 4i + j: a's lane i, b's lane j) of the rows in `lanes` (bit i: a's lane i).
@@ -58,19 +58,11 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
   const BvhNode* const na = v.side_a.bvh->nodes.data();
   const BV* const bva = v.side_a.bv->data();
   const BV* const bvb = v.side_b.bv->data();
-  const Index* const slot_a = v.side_a.wide_layout->slot.data();
-  const Index* const slot_b = v.side_b.wide_layout->slot.data();
-  const Index* const home_a = v.side_a.wide_layout->home.data();
-  const Index* const home_b = v.side_b.wide_layout->home.data();
-  const WideBounds<BV>* const wide_a = v.side_a.wide->data();
-  const WideBounds<BV>* const wide_b = v.side_b.wide->data();
-  const WideEnds* const wide_ends_a = v.side_a.wide_ends;  // end boxes on: both, else neither
-  const WideEnds* const wide_ends_b = v.side_b.wide_ends;
-  const Index* const skip_root = v.skip_root;
+  const WideSideArrays<BV> side_a(v.side_a), side_b(v.side_b);  // end boxes on: both sides' ends, else neither
   const bool self = v.self;
   std::uint64_t bv_tests = 0;
   const auto pair_entry = [&](Index a, Index b) {
-    return WideBvttEntry{home_a[a], home_b[b], slot_a[a], slot_b[b], bva[a].size_measure(), bvb[b].size_measure()};
+    return WideBvttEntry{side_a.home[a], side_b.home[b], side_a.slot[a], side_b.slot[b], bva[a].size_measure(), bvb[b].size_measure()};
   };
   // A visit pushes at most W · W pair nodes, or 2 entries for a self node; room is checked before each visit.
   if (stack.size() < 64) stack.resize(64);
@@ -108,25 +100,25 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
         room = base + stack.size() - W * W;
       }
       if (self && n.ha == n.hb) {
-        const BvhNode& A = na[n.ha];
-        if (!A.is_leaf() && !(skip_root && skip_root[n.ha] >= 0)) {  // BvttView::self_opens / self_children,
-          ++bv_tests;                                                   // (L, R) tested before it is stacked
-          if (v.nodes_overlap(A.left, A.right)) *top++ = pair_entry(A.left, A.right);
-          *top++ = {A.right, A.right, -1, -1, 0, 0};
-          n = {A.left, A.left, -1, -1, 0, 0};
+        if (const BvhNode& A = na[n.ha]; v.self_opens(A, n.ha)) {
+          const auto c = BvttView<BV>::self_children(A);  // (L, L) next, (R, R) stacked, (L, R) tested first
+          ++bv_tests;
+          if (v.nodes_overlap(c.node[2].a, c.node[2].b)) *top++ = pair_entry(c.node[2].a, c.node[2].b);
+          *top++ = {c.node[1].a, c.node[1].b, -1, -1, 0, 0};
+          n = {c.node[0].a, c.node[0].b, -1, -1, 0, 0};
           continue;
         }
       } else if (n.both_leaves()) {
         emit(n);
       } else {
         const bool down_a = n.descends_a();
-        const auto side_of = [&](bool a_side) { return a_side ? wide_a : wide_b; };
-        const auto ends_of = [&](bool a_side) { return a_side ? wide_ends_a : wide_ends_b; };
+        const auto side_of = [&](bool a_side) { return a_side ? side_a.records : side_b.records; };
+        const auto ends_of = [&](bool a_side) { return a_side ? side_a.ends : side_b.ends; };
         const Index rx = down_a ? n.wa : n.wb;  // the record opened
         const WideBounds<BV>& bx = side_of(down_a)[rx];
         const Index h = down_a ? n.hb : n.ha;  // the other side's home
         unsigned hit = overlapping_lanes(bx, WideLane<BV>{side_of(!down_a) + h / W, h % W});
-        if (wide_ends_a) hit &= ~lanes_apart_at_both_ends(ends_of(down_a)[rx], ends_of(!down_a)[h / W], h % W);
+        if (side_a.ends) hit &= ~lanes_apart_at_both_ends(ends_of(down_a)[rx], ends_of(!down_a)[h / W], h % W);
         bv_tests += used_lanes(bx);
         if (hit) {
           lane_sizes(bx, size);
@@ -148,7 +140,7 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
               emit(c);
               return;
             }
-            const char* r = reinterpret_cast<const char*>(c.descends_a() ? wide_a + c.wa : wide_b + c.wb);
+            const char* r = reinterpret_cast<const char*>(c.descends_a() ? side_a.records + c.wa : side_b.records + c.wb);
             for (std::size_t line = 0; line < sizeof(WideBounds<BV>); line += 64) __builtin_prefetch(r + line);
             *top++ = c;
           };
@@ -163,7 +155,7 @@ void traverse_bvtt_wide(const BvttView<BV>& v, BvttNode start, std::vector<WideB
             }
             const WideBounds<BV>& by = side_of(!down_a)[ry];
             unsigned hit_y = overlapping_lanes(by, WideLane<BV>{&bx, j});
-            if (wide_ends_a) hit_y &= ~lanes_apart_at_both_ends(ends_of(!down_a)[ry], ends_of(down_a)[rx], j);
+            if (side_a.ends) hit_y &= ~lanes_apart_at_both_ends(ends_of(!down_a)[ry], ends_of(down_a)[rx], j);
             bv_tests += used_lanes(by);
             if (hit_y && !sized_y) lane_sizes(by, size_y), sized_y = true;
             for (; hit_y; hit_y &= hit_y - 1) settle(lane_child(c, !down_a, ry, by, size_y, std::countr_zero(hit_y)));

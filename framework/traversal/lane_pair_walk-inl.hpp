@@ -15,13 +15,7 @@ CCDLAB_WALK_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode
                                                    FacePairs& pairs, std::uint64_t& bv_tests_out) {
   constexpr int W = WideLayout::kWidth;
   const BvhNode* const na = v.side_a.bvh->nodes.data();
-  const Index* const slot_a = v.side_a.wide_layout->slot.data();
-  const Index* const slot_b = v.side_b.wide_layout->slot.data();
-  const Index* const home_a = v.side_a.wide_layout->home.data();
-  const Index* const home_b = v.side_b.wide_layout->home.data();
-  const WideBounds<BV>* const wide_a = v.side_a.wide->data();
-  const WideBounds<BV>* const wide_b = v.side_b.wide->data();
-  const Index* const skip_root = v.skip_root;
+  const WideSideArrays<BV> side_a(v.side_a), side_b(v.side_b);
   const bool self = v.self;
   std::uint64_t bv_tests = 0;
   // A visit pushes at most 16 pair nodes, or 2 for a self node; room is checked before each visit.
@@ -46,24 +40,24 @@ CCDLAB_WALK_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode
   if (!(self && start.a == start.b)) {
     ++bv_tests;
     visit = v.nodes_overlap(start.a, start.b);
-    ha = home_a[start.a], hb = home_b[start.b], wa = slot_a[start.a], wb = slot_b[start.b];
+    ha = side_a.home[start.a], hb = side_b.home[start.b], wa = side_a.slot[start.a], wb = side_b.slot[start.b];
   }
   for (;;) {
     if (visit) {
       if (cur.top + 2 * W * W > stack.cap()) [[unlikely]] make_room(cur.top + 2 * W * W);
       if (self && ha == hb) {  // a self node (a pair node's homes differ)
-        const BvhNode& A = na[ha];
-        if (!A.is_leaf() && !(skip_root && skip_root[ha] >= 0)) {
+        if (const BvhNode& A = na[ha]; v.self_opens(A, ha)) {
           // (L, R) is pushed untested: testing it here culls few and reads the binary array, away from the
           // records; its visit tests the lanes anyway (docs/wide-bvh.md).
-          push(home_a[A.left], home_a[A.right], slot_a[A.left], slot_a[A.right]);
-          push(A.right, A.right, -1, -1);
-          ha = hb = A.left;
+          const auto c = BvttView<BV>::self_children(A);
+          push(side_a.home[c.node[2].a], side_a.home[c.node[2].b], side_a.slot[c.node[2].a], side_a.slot[c.node[2].b]);
+          push(c.node[1].a, c.node[1].b, -1, -1);
+          ha = hb = c.node[0].a;
           continue;
         }
       } else {
         Index ra, rb;
-        const unsigned allowed = entry_lane_pairs(wide_a, wide_b, ha, hb, wa, wb, ra, rb);
+        const unsigned allowed = entry_lane_pairs(side_a.records, side_b.records, ha, hb, wa, wb, ra, rb);
         bv_tests += unsigned(std::popcount(allowed));
         if (cur.pout + W * W > pend) [[unlikely]] {
           emitted = std::size_t(cur.pout - pairs.data());
@@ -71,7 +65,7 @@ CCDLAB_WALK_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode
           cur.pout = pairs.data() + emitted;
           pend = pairs.data() + pairs.size();
         }
-        visit_lane_pairs(wide_a[ra], wide_b[rb], ra, rb, allowed, self, cur);
+        visit_lane_pairs(side_a.records[ra], side_b.records[rb], ra, rb, allowed, self, cur);
       }
     }
     if (cur.top == 0) break;
@@ -82,7 +76,7 @@ CCDLAB_WALK_TARGET void traverse_bvtt_lane_pairs(const BvttView<BV>& v, BvttNode
     // a miss; one below the top comes too late to hide it (docs/appendix-wide-bvh.md has the figures). A self
     // node's entry holds its node id, not a home: id / W is then some record (ids < 2 · records), a useless but
     // harmless prefetch.
-    if (cur.top >= 2) prefetch_entry_records(wide_a, wide_b, cur, cur.top - 2);
+    if (cur.top >= 2) prefetch_entry_records(side_a.records, side_b.records, cur, cur.top - 2);
     visit = true;
   }
   pairs.resize(std::size_t(cur.pout - pairs.data()));

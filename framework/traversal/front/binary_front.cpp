@@ -1,13 +1,14 @@
 #include "framework/traversal/front/binary_front.hpp"
 
+#include "framework/traversal/bvtt_rule.hpp"
+
 namespace ccdlab {
 
 std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b, bool self, BvttNode root,
                                      double granularity, double min_pairs) {
   std::vector<FrontNode> front;
   if (a.nodes.empty() || b.nodes.empty()) return front;
-  const double la = a.num_leaves(), lb = b.num_leaves();
-  const double max_pairs = std::max(min_pairs, (self ? la * (la - 1) / 2 : la * lb) / granularity);
+  const double max_pairs = bvtt_rule::seed_max_pairs(a.num_leaves(), b.num_leaves(), self, granularity, min_pairs);
   std::vector<BvttNode> stack;
   auto split_into_front = [&](BvttNode root) {
     stack.assign(1, root);
@@ -15,9 +16,9 @@ std::vector<FrontNode> initial_front(const BvhTopology& a, const BvhTopology& b,
       BvttNode n = stack.back();
       stack.pop_back();
       const double na = a.leaf_count[n.a], nb = b.leaf_count[n.b];
-      if (na * nb <= max_pairs || (na == 1 && nb == 1)) {
+      if (bvtt_rule::seed_is_piece(na, nb, max_pairs)) {
         front.push_back(FrontNode{n.a, n.b, FrontNode::kFresh});
-      } else if (na >= nb) {
+      } else if (bvtt_rule::seed_splits_a(na, nb)) {
         stack.push_back({a.nodes[n.a].right, n.b});
         stack.push_back({a.nodes[n.a].left, n.b});
       } else {

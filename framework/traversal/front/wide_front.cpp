@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <span>
 
+#include "framework/traversal/bvtt_rule.hpp"
+
 namespace ccdlab {
 
 WideFrontPiece wide_front_seeds(const BvhTopology& a, const WideLayout& la, const BvhTopology& b,
@@ -11,8 +13,7 @@ WideFrontPiece wide_front_seeds(const BvhTopology& a, const WideLayout& la, cons
   constexpr int W = WideLayout::kWidth;
   WideFrontPiece front;
   if (a.nodes.empty() || b.nodes.empty()) return front;
-  const double na = a.num_leaves(), nb = b.num_leaves();
-  const double max_pairs = std::max(min_pairs, (self ? na * (na - 1) / 2 : na * nb) / granularity);
+  const double max_pairs = bvtt_rule::seed_max_pairs(a.num_leaves(), b.num_leaves(), self, granularity, min_pairs);
   const auto add = [&](Index hx, Index hy) {  // node pair at homes hx, hy: one lane pair, merged when it can be
     const unsigned bit = 1u << (W * (hx % W) + hy % W);
     if (!front.empty() && front.back().ra == hx / W && front.back().rb == hy / W)
@@ -42,7 +43,7 @@ WideFrontPiece wide_front_seeds(const BvhTopology& a, const WideLayout& la, cons
       const auto [p, q] = stack.back();
       stack.pop_back();
       const double cp = a.leaf_count[std::size_t(p.node)], cq = b.leaf_count[std::size_t(q.node)];
-      if (cp * cq <= max_pairs || (cp == 1 && cq == 1)) {
+      if (bvtt_rule::seed_is_piece(cp, cq, max_pairs)) {
         add(p.home, q.home);
         continue;
       }
@@ -70,7 +71,7 @@ WideFrontPiece wide_front_seeds(const BvhTopology& a, const WideLayout& la, cons
     const BvhNode& n = a.nodes[std::size_t(i)];
     if (n.is_leaf()) continue;
     const double c = a.leaf_count[std::size_t(i)];
-    if (c * (c - 1) / 2 <= max_pairs) {
+    if (bvtt_rule::self_seed_is_piece(c, max_pairs)) {
       add(la.home[std::size_t(i)], la.home[std::size_t(i)]);
       continue;
     }

@@ -170,9 +170,11 @@ CCDLAB_WALK_TARGET void process_wide_front(const BvttView<BV>& v, const WideFron
             ++cur.top;
           };
           room_for_visit();
-          push(la.home[std::size_t(x.left)], la.home[std::size_t(x.right)], la.slot[std::size_t(x.left)], la.slot[std::size_t(x.right)]);
-          push(x.right, x.right, -1, -1);
-          push(x.left, x.left, -1, -1);
+          const auto ch = BvttView<BV>::self_children(x);
+          const BvttNode lr = ch.node[2];
+          push(la.home[std::size_t(lr.a)], la.home[std::size_t(lr.b)], la.slot[std::size_t(lr.a)], la.slot[std::size_t(lr.b)]);
+          push(ch.node[1].a, ch.node[1].b, -1, -1);
+          push(ch.node[0].a, ch.node[0].b, -1, -1);
         }
         continue;
       }
