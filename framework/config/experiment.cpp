@@ -187,7 +187,7 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
   for (const auto& o : overrides) overridden.insert(apply_override(root, o));
   YamlReader r(path, overridden);
   r.check_keys(root, "", {"name", "scene", "bv", "hierarchy", "restructure", "normal_cones", "scheduler", "threads", "tester",
-                   "narrow", "memory_limit", "output"});
+                   "narrow", "memory_limit", "replay", "output"});
 
   ExperimentConfig c;
   c.source = path;
@@ -195,6 +195,13 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
   if (!root["scene"]) fail("{}: scene: required key missing (e.g. scene: {{builtin: drape_fold}})", path);
   c.scene = read_scene(r, root["scene"], path, reg);
   read_strategy_section(r, root, reg, c);
+  if (const YAML::Node n = root["replay"]) {
+    r.check_keys(n, "replay", {"step", "frames"});
+    if (!n["step"])
+      fail("{}:{}: replay.step: required key missing (e.g. replay: {{step: 19, frames: 11}})", path, n.Mark().line + 1);
+    c.replay.step = int(r.integer(n["step"], "replay.step", 0, 1e6));
+    if (n["frames"]) c.replay.frames = int(r.integer(n["frames"], "replay.frames", 2, 1e6));
+  }
   c.output.dir = "results/" + c.name;
   if (const YAML::Node o = root["output"]) {
     r.check_keys(o, "output", {"dir", "csv", "jsonl", "contacts"});
@@ -296,6 +303,7 @@ nlohmann::json to_json(const ExperimentConfig& c) {
       j["scene"] = {{"bodies", bodies}};
     }
   }
+  if (c.replay.step >= 0) j["replay"] = {{"step", c.replay.step}, {"frames", c.replay.frames}};
   j.update(to_json(static_cast<const PipelineConfig&>(c)));
   j["output"] = {{"dir", c.output.dir}, {"csv", c.output.csv}, {"jsonl", c.output.jsonl}, {"contacts", c.output.contacts}};
   return j;
@@ -307,7 +315,9 @@ std::string to_yaml(const nlohmann::json& j) {
   return std::string(out.c_str()) + "\n";
 }
 
-MeshSequence make_scene(const ExperimentConfig& c, const Registries& reg) {
+namespace {
+/// The scene's own frames, before any replay.
+MeshSequence make_scene_frames(const ExperimentConfig& c, const Registries& reg) {
   if (c.scene.builtin) {
     const auto* entry = reg.scenes.find(c.scene.generator.name);
     if (entry && entry->triangles && c.memory_limit_bytes > 0) {
@@ -323,6 +333,12 @@ MeshSequence make_scene(const ExperimentConfig& c, const Registries& reg) {
   }
   if (!c.scene.bodies.empty()) return load_body_files(c.scene.bodies);
   return load_frame_files(c.scene.files, c.scene.self_collision);
+}
+}  // namespace
+
+MeshSequence make_scene(const ExperimentConfig& c, const Registries& reg) {
+  MeshSequence sequence = make_scene_frames(c, reg);
+  return c.replay.step < 0 ? std::move(sequence) : replay_step(std::move(sequence), c.replay.step, c.replay.frames);
 }
 
 PipelineStrategies make_strategies(const PipelineConfig& c, const Registries& reg, const SettingName& name) {

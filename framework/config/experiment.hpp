@@ -2,7 +2,7 @@
 // The experiment config: YAML → typed structs, in this one place. Every key is validated; an unknown key or
 // a bad value is an Error "file:line: key: expected …, got …". Top-level keys:
 //   name, scene, bv {k}, hierarchy, restructure {threshold}, normal_cones, scheduler, threads, tester,
-//   narrow {mode, representative}, memory_limit,
+//   narrow {mode, representative}, memory_limit, replay {step, frames},
 //   output {dir, csv, jsonl, contacts}
 // Strategies (hierarchy, scheduler, tester, built-in scenes) are a name or a map {name: …, param: …},
 // validated against the registries (see docs/config.md).
@@ -41,6 +41,12 @@ struct SceneConfig {
   std::vector<BodyFiles> bodies;    ///< from files, several bodies (scene: {bodies: […]}); empty otherwise
 };
 
+/// replay: one step of the scene run again and again (replay_step, mesh_sequence.hpp): a steady state to time.
+struct ReplayConfig {
+  int step = -1;    ///< the scene's step (frame step → step + 1); -1 = the scene's own steps, in order
+  int frames = 11;  ///< frames of the replay: frames − 1 steps
+};
+
 struct OutputConfig {
   std::string dir = "results/run";  ///< CSV, JSONL and the resolved config go here
   bool csv = true;
@@ -53,6 +59,7 @@ struct ExperimentConfig : PipelineConfig {
   std::string name = "run";
   std::string source;               ///< the YAML file it came from
   SceneConfig scene;
+  ReplayConfig replay;
   OutputConfig output;
 };
 

@@ -28,6 +28,18 @@ Positions MeshSequence::frame(int i) const {
   return x;
 }
 
+MeshSequence replay_step(MeshSequence sequence, int step, int frames) {
+  if (step < 0 || step >= sequence.num_steps())
+    fail("replay.step: expected 0 … {} (the steps of {}), got {}", sequence.num_steps() - 1, sequence.description(), step);
+  if (frames < 2) fail("replay.frames: expected at least 2, got {}", frames);
+  auto base = std::make_shared<const MeshSequence>(std::move(sequence));
+  std::vector<std::string> labels;
+  for (int i = 0; i < frames; ++i) labels.push_back(base->frame_label(step + i % 2));
+  return MeshSequence(base->topology(), base->bodies(), std::move(labels),
+                      [base, step](int i) { return base->frame(step + i % 2); },
+                      fmt::format("{}, step {} replayed", base->description(), step));
+}
+
 std::vector<std::string> expand_frame_pattern(const std::string& pattern, int first, int last) {
   auto pct = pattern.find('%');
   if (pct == std::string::npos || pattern.find('%', pct + 1) != std::string::npos)

@@ -37,6 +37,11 @@ class MeshSequence {
   std::string description_;
 };
 
+/// Step `step` (frame step → step + 1) of `sequence`, replayed: frames step, step + 1, step, … (`frames` of them),
+/// every other step backwards. A steady simulation's later steps in miniature: the same pairs and contacts
+/// every step, the BVH and the front warm after the first. Throws Error when the step is not one of the sequence's.
+MeshSequence replay_step(MeshSequence sequence, int step, int frames);
+
 /// "dir/%03d.ply" with first..last → the file names (printf-style integer pattern, exactly one %d).
 std::vector<std::string> expand_frame_pattern(const std::string& pattern, int first, int last);
 

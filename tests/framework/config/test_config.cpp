@@ -55,7 +55,7 @@ TEST_F(Config, DefaultsAndTypedValues) {
 TEST_F(Config, UnknownKeysAreLocatedWithAHint) {
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\nschedular: sequential\n"),
             "exp.yaml:2: schedular: unknown key (did you mean 'scheduler'?); valid keys are: name, scene, bv, "
-            "hierarchy, restructure, normal_cones, scheduler, threads, tester, narrow, memory_limit, output");
+            "hierarchy, restructure, normal_cones, scheduler, threads, tester, narrow, memory_limit, replay, output");
   EXPECT_EQ(error_of("scene:\n  builtin: drape_fold\n  resolution: 10\n  sphere_radus: 1\n"),
             "exp.yaml:4: scene.sphere_radus: unknown key (did you mean 'sphere_radius'?); valid keys are: builtin, "
             "resolution, num_frames, fold_deg, crease, crease_radius, wrinkle, sphere_radius, sphere_segments, "
@@ -98,6 +98,39 @@ TEST_F(Config, CommandLineOverridesAndTheirErrors) {
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\n", {"bv.kk=8"}),
             "--set bv.kk: bv.kk: unknown key (did you mean 'k'?); valid keys are: k, width, end_boxes");
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\n", {"novalue"}), "--set novalue: expected key=value");
+}
+
+TEST_F(Config, ReplayRunsOneStepOfTheSceneBackAndForth) {
+  auto c = load_experiment(write("scene: {builtin: drape_fold, resolution: 6, num_frames: 8}\nreplay: {step: 5, frames: 4}\n"),
+                           {}, builtin_registries());
+  EXPECT_EQ(c.replay.step, 5);
+  EXPECT_EQ(c.replay.frames, 4);
+  EXPECT_EQ(to_json(c)["replay"]["step"], 5);
+  const MeshSequence own = make_scene(load_experiment(write("scene: {builtin: drape_fold, resolution: 6, num_frames: 8}\n"),
+                                                      {}, builtin_registries()),
+                                      builtin_registries());
+  const MeshSequence replay = make_scene(c, builtin_registries());
+  ASSERT_EQ(replay.num_frames(), 4);
+  EXPECT_EQ(replay.topology().num_faces(), own.topology().num_faces());
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(replay.frame_label(i), own.frame_label(5 + i % 2));
+    EXPECT_EQ(replay.frame(i), own.frame(5 + i % 2)) << "frame " << i;
+  }
+  EXPECT_FALSE(to_json(load_experiment(write("scene: {builtin: drape_fold}\n"), {}, builtin_registries())).contains("replay"));
+  EXPECT_EQ(error_of("scene: {builtin: drape_fold}\nreplay: {step: 1, frame: 3}\n"),
+            "exp.yaml:2: replay.frame: unknown key (did you mean 'frames'?); valid keys are: step, frames");
+  EXPECT_EQ(error_of("scene: {builtin: drape_fold}\nreplay: {frames: 3}\n"),
+            "exp.yaml:2: replay.step: required key missing (e.g. replay: {step: 19, frames: 11})");
+  EXPECT_EQ(error_of("scene: {builtin: drape_fold}\nreplay: {step: 1, frames: 1}\n"),
+            "exp.yaml:2: replay.frames: expected an integer in [2, 1000000], got '1'");
+  try {  // a step the scene does not have: found when the scene is made
+    (void)make_scene(load_experiment(write("scene: {builtin: drape_fold, resolution: 6, num_frames: 8}\nreplay: {step: 7}\n"),
+                                     {}, builtin_registries()),
+                     builtin_registries());
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("replay.step: expected 0 … 6"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(Config, FrameScenesResolvePathsAgainstTheConfigFile) {
