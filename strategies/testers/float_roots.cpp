@@ -1,6 +1,8 @@
 // Highway compiles this file once per SIMD target (foreach_target.h) and picks one at run time.
 #include "strategies/testers/float_roots.hpp"
 
+#include <algorithm>
+
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "strategies/testers/float_roots.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
@@ -76,113 +78,155 @@ HWY_INLINE void SortPair(V& a, V& b) {
   b = hn::Max(a, b), a = lo;
 }
 
+/// One vector of queries between the setup and the refinement: the cubic and the interval the Illinois loop
+/// narrows, with the lane masks of the answer.
+template <class D>
+struct RootSearch {
+  using V = hn::Vec<D>;
+  using M = hn::Mask<D>;
+  Cubic<V> f;
+  V lo, hi, flo, fhi, side;  // side: −1 the last step moved lo; +1 hi
+  M scalar, root, more, active;
+};
+
+/// The setup of rows [i, i + lanes): coefficients, early outs, breakpoints and the first event among them.
+template <class D>
+HWY_INLINE RootSearch<D> StartSearch(D d, const double* columns, std::size_t stride, std::size_t i, double rel_tolerance) {
+  using V = hn::Vec<D>;
+  using M = hn::Mask<D>;
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0), inf = hn::Set(d, HUGE_VAL);
+  const auto col = [&](int k) { return hn::LoadU(d, columns + stride * std::size_t(k) + i); };
+  const auto xyz = [&](int k) { return Xyz<V>{col(k), col(k + 1), col(k + 2)}; };
+  RootSearch<D> r;
+  r.f = Cubic<V>{{xyz(CubicColumns::A0x), xyz(CubicColumns::dAx)},
+                 {xyz(CubicColumns::B0x), xyz(CubicColumns::dBx)},
+                 {xyz(CubicColumns::C0x), xyz(CubicColumns::dCx)}};
+  const Cubic<V>& f = r.f;
+  const V f_scale = col(CubicColumns::f_scale);
+  const Xyz<V>&A0 = f.A.x0, &dA = f.A.dx, &B0 = f.B.x0, &dB = f.B.dx, &C0 = f.C.x0, &dC = f.C.dx;
+  // The coefficients of f(t) = a t³ + b t² + c t + dd, in earliest_hit's order.
+  const Xyz<V> B0C0 = Cross(B0, C0);
+  const V dd = Dot(A0, B0C0);
+  const V c = hn::Add(hn::Add(Dot(dA, B0C0), Dot(A0, Cross(dB, C0))), Dot(A0, Cross(B0, dC)));
+  const V b = hn::Add(hn::Add(Dot(dA, Cross(dB, C0)), Dot(dA, Cross(B0, dC))), Dot(A0, Cross(dB, dC)));
+  const V a = Dot(dA, Cross(dB, dC));
+  const V big = hn::Max(hn::Max(hn::Abs(a), hn::Abs(b)), hn::Max(hn::Abs(c), hn::Abs(dd)));
+  // Coplanar motion, or a NaN anywhere: the scalar tester decides.
+  M scalar = hn::Not(hn::Gt(big, hn::Mul(hn::Set(d, 1e-12), f_scale)));
+  scalar = hn::Or(scalar, hn::Not(hn::IsFinite(hn::Add(hn::Add(a, b), hn::Add(c, dd)))));
+  const V tol = hn::Mul(hn::Set(d, rel_tolerance), f_scale);
+  const V neg_tol = hn::Neg(tol);
+  // Bernstein early out: all four coefficients beyond ±tol on one side.
+  const V three = hn::Set(d, 3.0);
+  const V b0 = dd, b1 = hn::Add(dd, hn::Div(c, three)),
+          b2 = hn::Add(dd, hn::Div(hn::Add(hn::Mul(hn::Set(d, 2.0), c), b), three)),
+          b3 = hn::Add(hn::Add(hn::Add(dd, c), b), a);
+  const M above = hn::And(hn::And(hn::Gt(b0, tol), hn::Gt(b1, tol)), hn::And(hn::Gt(b2, tol), hn::Gt(b3, tol)));
+  const M below =
+      hn::And(hn::And(hn::Lt(b0, neg_tol), hn::Lt(b1, neg_tol)), hn::And(hn::Lt(b2, neg_tol), hn::Lt(b3, neg_tol)));
+  const M decided = hn::Or(scalar, hn::Or(above, below));
+  // Breakpoints: 0, 1 and the roots of f′ = 3a t² + 2b t + c in [0, 1], sorted; a missing root sorts last as +∞.
+  V r1, r2;
+  M ok1, ok2;
+  QuadraticRoots(d, hn::Mul(three, a), hn::Mul(hn::Set(d, 2.0), b), c, r1, ok1, r2, ok2);
+  // A root at ±0 ties with the breakpoint 0 but may differ from it in sign; which one std::sort puts first is
+  // not worth mirroring: such a lane goes to the scalar tester.
+  scalar = hn::Or(scalar, hn::Or(hn::And(ok1, hn::Eq(r1, zero)), hn::And(ok2, hn::Eq(r2, zero))));
+  V s[4] = {zero, one, hn::IfThenElse(ok1, r1, inf), hn::IfThenElse(ok2, r2, inf)};
+  SortPair(s[0], s[1]), SortPair(s[2], s[3]), SortPair(s[0], s[2]), SortPair(s[1], s[3]), SortPair(s[1], s[2]);
+  M exists[4];
+  V value[4];
+  for (int k = 0; k < 4; ++k) {
+    exists[k] = hn::Ne(s[k], inf);
+    value[k] = f(hn::IfThenElse(exists[k], s[k], zero));
+  }
+  // The first event in order: a breakpoint where f touches zero (scalar), else the first sign change (root).
+  const M none = hn::Ne(zero, zero);
+  M found = hn::Or(decided, scalar), more = none, root = none;
+  V lo = zero, hi = zero, flo = zero, fhi = zero;
+  for (int k = 0; k < 4; ++k) {
+    const M touch = hn::And(exists[k], hn::Le(hn::Abs(value[k]), tol));
+    M change = none;
+    if (k + 1 < 4) {
+      const V u = value[k], w = value[k + 1];
+      const M sign = hn::Or(hn::And(hn::Lt(u, zero), hn::Gt(w, zero)), hn::And(hn::Gt(u, zero), hn::Lt(w, zero)));
+      change = hn::And(exists[k + 1], sign);
+    }
+    more = hn::Or(more, hn::And(root, hn::Or(touch, change)));
+    scalar = hn::Or(scalar, hn::AndNot(found, touch));
+    found = hn::Or(found, touch);
+    const M first = hn::AndNot(found, change);
+    if (k + 1 < 4) {
+      lo = hn::IfThenElse(first, s[k], lo), hi = hn::IfThenElse(first, s[k + 1], hi);
+      flo = hn::IfThenElse(first, value[k], flo), fhi = hn::IfThenElse(first, value[k + 1], fhi);
+    }
+    root = hn::Or(root, first);
+    found = hn::Or(found, first);
+  }
+  r.lo = lo, r.hi = hi, r.flo = flo, r.fhi = fhi, r.side = zero;
+  r.scalar = scalar, r.root = root, r.more = more;
+  r.active = hn::And(root, hn::Gt(hn::Sub(hi, lo), hn::Set(d, 1e-15)));
+  return r;
+}
+
+/// One Illinois false-position step on the active lanes, as the scalar loop takes it.
+template <class D>
+HWY_INLINE void IllinoisStep(D d, RootSearch<D>& r) {
+  using V = hn::Vec<D>;
+  using M = hn::Mask<D>;
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0), half = hn::Set(d, 0.5), minus_one = hn::Set(d, -1.0);
+  V t = hn::Div(hn::Sub(hn::Mul(r.lo, r.fhi), hn::Mul(r.hi, r.flo)), hn::Sub(r.fhi, r.flo));
+  t = hn::IfThenElse(hn::And(hn::Gt(t, r.lo), hn::Lt(t, r.hi)), t, hn::Mul(half, hn::Add(r.lo, r.hi)));
+  const V ft = r.f(t);
+  const M exact = hn::And(r.active, hn::Eq(ft, zero));
+  const M moves = hn::AndNot(exact, r.active);
+  const M same = hn::Not(hn::Xor(hn::Lt(ft, zero), hn::Lt(r.flo, zero)));
+  const M move_lo = hn::And(moves, same), move_hi = hn::AndNot(same, moves);
+  // lo side: lo = t, flo = ft, and fhi halves when lo moved last time too.
+  r.fhi = hn::IfThenElse(hn::And(move_lo, hn::Eq(r.side, minus_one)), hn::Mul(r.fhi, half), r.fhi);
+  // hi side: hi = t, fhi = ft, and flo (the old one) halves when hi moved last time too.
+  r.flo = hn::IfThenElse(hn::And(move_hi, hn::Eq(r.side, one)), hn::Mul(r.flo, half), r.flo);
+  r.lo = hn::IfThenElse(hn::Or(move_lo, exact), t, r.lo), r.flo = hn::IfThenElse(move_lo, ft, r.flo);
+  r.hi = hn::IfThenElse(hn::Or(move_hi, exact), t, r.hi), r.fhi = hn::IfThenElse(move_hi, ft, r.fhi);
+  r.side = hn::IfThenElse(move_lo, minus_one, hn::IfThenElse(move_hi, one, r.side));
+  r.active = hn::AndNot(exact, hn::And(r.active, hn::Gt(hn::Sub(r.hi, r.lo), hn::Set(d, 1e-15))));
+}
+
 void FirstCoplanarRoots(const double* columns, std::size_t stride, std::size_t n, double rel_tolerance,
                         FirstRoot* kind, double* t_out, std::uint8_t* more_out) {
-  const hn::ScalableTag<double> d;
-  using V = hn::Vec<decltype(d)>;
-  using M = hn::Mask<decltype(d)>;
+  using D = hn::ScalableTag<double>;
+  const D d;
   const std::size_t N = hn::Lanes(d);
-  const V zero = hn::Zero(d), one = hn::Set(d, 1.0), inf = hn::Set(d, HUGE_VAL);
-  for (std::size_t i = 0; i < n; i += N) {
-    const auto col = [&](int k) { return hn::LoadU(d, columns + stride * std::size_t(k) + i); };
-    const auto xyz = [&](int k) { return Xyz<V>{col(k), col(k + 1), col(k + 2)}; };
-    const Cubic<V> f{{xyz(CubicColumns::A0x), xyz(CubicColumns::dAx)},
-                     {xyz(CubicColumns::B0x), xyz(CubicColumns::dBx)},
-                     {xyz(CubicColumns::C0x), xyz(CubicColumns::dCx)}};
-    const V f_scale = col(CubicColumns::f_scale);
-    const Xyz<V>&A0 = f.A.x0, &dA = f.A.dx, &B0 = f.B.x0, &dB = f.B.dx, &C0 = f.C.x0, &dC = f.C.dx;
-    // The coefficients of f(t) = a t³ + b t² + c t + dd, in earliest_hit's order.
-    const Xyz<V> B0C0 = Cross(B0, C0);
-    const V dd = Dot(A0, B0C0);
-    const V c = hn::Add(hn::Add(Dot(dA, B0C0), Dot(A0, Cross(dB, C0))), Dot(A0, Cross(B0, dC)));
-    const V b = hn::Add(hn::Add(Dot(dA, Cross(dB, C0)), Dot(dA, Cross(B0, dC))), Dot(A0, Cross(dB, dC)));
-    const V a = Dot(dA, Cross(dB, dC));
-    const V big = hn::Max(hn::Max(hn::Abs(a), hn::Abs(b)), hn::Max(hn::Abs(c), hn::Abs(dd)));
-    // Coplanar motion, or a NaN anywhere: the scalar tester decides.
-    M scalar = hn::Not(hn::Gt(big, hn::Mul(hn::Set(d, 1e-12), f_scale)));
-    scalar = hn::Or(scalar, hn::Not(hn::IsFinite(hn::Add(hn::Add(a, b), hn::Add(c, dd)))));
-    const V tol = hn::Mul(hn::Set(d, rel_tolerance), f_scale);
-    const V neg_tol = hn::Neg(tol);
-    // Bernstein early out: all four coefficients beyond ±tol on one side.
-    const V three = hn::Set(d, 3.0);
-    const V b0 = dd, b1 = hn::Add(dd, hn::Div(c, three)),
-            b2 = hn::Add(dd, hn::Div(hn::Add(hn::Mul(hn::Set(d, 2.0), c), b), three)),
-            b3 = hn::Add(hn::Add(hn::Add(dd, c), b), a);
-    const M above = hn::And(hn::And(hn::Gt(b0, tol), hn::Gt(b1, tol)), hn::And(hn::Gt(b2, tol), hn::Gt(b3, tol)));
-    const M below =
-        hn::And(hn::And(hn::Lt(b0, neg_tol), hn::Lt(b1, neg_tol)), hn::And(hn::Lt(b2, neg_tol), hn::Lt(b3, neg_tol)));
-    const M decided = hn::Or(scalar, hn::Or(above, below));
-    // Breakpoints: 0, 1 and the roots of f′ = 3a t² + 2b t + c in [0, 1], sorted; a missing root sorts last as +∞.
-    V r1, r2;
-    M ok1, ok2;
-    QuadraticRoots(d, hn::Mul(three, a), hn::Mul(hn::Set(d, 2.0), b), c, r1, ok1, r2, ok2);
-    // A root at ±0 ties with the breakpoint 0 but may differ from it in sign; which one std::sort puts first is
-    // not worth mirroring: such a lane goes to the scalar tester.
-    scalar = hn::Or(scalar, hn::Or(hn::And(ok1, hn::Eq(r1, zero)), hn::And(ok2, hn::Eq(r2, zero))));
-    V s[4] = {zero, one, hn::IfThenElse(ok1, r1, inf), hn::IfThenElse(ok2, r2, inf)};
-    SortPair(s[0], s[1]), SortPair(s[2], s[3]), SortPair(s[0], s[2]), SortPair(s[1], s[3]), SortPair(s[1], s[2]);
-    M exists[4];
-    V value[4];
-    for (int k = 0; k < 4; ++k) {
-      exists[k] = hn::Ne(s[k], inf);
-      value[k] = f(hn::IfThenElse(exists[k], s[k], zero));
+  // kGroup vectors refine side by side: a step's divide and cubic form one long dependency chain, and
+  // independent chains fill its latency. Every lane runs the same operations as alone, so the answers do not
+  // depend on the grouping.
+  constexpr std::size_t kGroup = 2;
+  for (std::size_t i = 0; i < n; i += kGroup * N) {
+    const std::size_t group = std::min(kGroup, (n - i + N - 1) / N);
+    RootSearch<D> r[kGroup];
+    for (std::size_t g = 0; g < kGroup; ++g) r[g] = StartSearch(d, columns, stride, i + (g < group ? g : 0) * N, rel_tolerance);
+    for (std::size_t g = group; g < kGroup; ++g) r[g].active = hn::Ne(hn::Zero(d), hn::Zero(d));
+    for (int it = 0; it < 100; ++it) {
+      bool any = false;
+      for (std::size_t g = 0; g < kGroup; ++g) any |= !hn::AllFalse(d, r[g].active);
+      if (!any) break;
+      for (std::size_t g = 0; g < kGroup; ++g) IllinoisStep(d, r[g]);
     }
-    // The first event in order: a breakpoint where f touches zero (scalar), else the first sign change (root).
-    const M none = hn::Ne(zero, zero);
-    M found = hn::Or(decided, scalar), more = none, root = none;
-    V lo = zero, hi = zero, flo = zero, fhi = zero;
-    for (int k = 0; k < 4; ++k) {
-      const M touch = hn::And(exists[k], hn::Le(hn::Abs(value[k]), tol));
-      M change = none;
-      if (k + 1 < 4) {
-        const V u = value[k], w = value[k + 1];
-        const M sign = hn::Or(hn::And(hn::Lt(u, zero), hn::Gt(w, zero)), hn::And(hn::Gt(u, zero), hn::Lt(w, zero)));
-        change = hn::And(exists[k + 1], sign);
-      }
-      more = hn::Or(more, hn::And(root, hn::Or(touch, change)));
-      scalar = hn::Or(scalar, hn::AndNot(found, touch));
-      found = hn::Or(found, touch);
-      const M first = hn::AndNot(found, change);
-      if (k + 1 < 4) {
-        lo = hn::IfThenElse(first, s[k], lo), hi = hn::IfThenElse(first, s[k + 1], hi);
-        flo = hn::IfThenElse(first, value[k], flo), fhi = hn::IfThenElse(first, value[k + 1], fhi);
-      }
-      root = hn::Or(root, first);
-      found = hn::Or(found, first);
-    }
-    // Illinois false position on each root lane's interval, lane by lane as the scalar loop runs it.
-    const V eps = hn::Set(d, 1e-15), half = hn::Set(d, 0.5);
-    V side = zero;  // −1: the last step moved lo; +1: hi
-    M active = hn::And(root, hn::Gt(hn::Sub(hi, lo), eps));
-    for (int it = 0; it < 100 && !hn::AllFalse(d, active); ++it) {
-      V t = hn::Div(hn::Sub(hn::Mul(lo, fhi), hn::Mul(hi, flo)), hn::Sub(fhi, flo));
-      t = hn::IfThenElse(hn::And(hn::Gt(t, lo), hn::Lt(t, hi)), t, hn::Mul(half, hn::Add(lo, hi)));
-      const V ft = f(t);
-      const M exact = hn::And(active, hn::Eq(ft, zero));
-      const M moves = hn::AndNot(exact, active);
-      const M same = hn::Not(hn::Xor(hn::Lt(ft, zero), hn::Lt(flo, zero)));
-      const M move_lo = hn::And(moves, same), move_hi = hn::AndNot(same, moves);
-      // lo side: lo = t, flo = ft, and fhi halves when lo moved last time too.
-      fhi = hn::IfThenElse(hn::And(move_lo, hn::Eq(side, hn::Set(d, -1.0))), hn::Mul(fhi, half), fhi);
-      // hi side: hi = t, fhi = ft, and flo (the old one) halves when hi moved last time too.
-      flo = hn::IfThenElse(hn::And(move_hi, hn::Eq(side, one)), hn::Mul(flo, half), flo);
-      lo = hn::IfThenElse(hn::Or(move_lo, exact), t, lo), flo = hn::IfThenElse(move_lo, ft, flo);
-      hi = hn::IfThenElse(hn::Or(move_hi, exact), t, hi), fhi = hn::IfThenElse(move_hi, ft, fhi);
-      side = hn::IfThenElse(move_lo, hn::Set(d, -1.0), hn::IfThenElse(move_hi, one, side));
-      active = hn::AndNot(exact, hn::And(active, hn::Gt(hn::Sub(hi, lo), eps)));
-    }
-    const V t = hn::Mul(half, hn::Add(lo, hi));
     // Per lane: scalar wins over everything, then root; the rest has no candidate at all.
-    HWY_ALIGN double t_lanes[HWY_MAX_BYTES / sizeof(double)];
-    HWY_ALIGN double kind_lanes[HWY_MAX_BYTES / sizeof(double)];
-    HWY_ALIGN double more_lanes[HWY_MAX_BYTES / sizeof(double)];
-    hn::Store(t, d, t_lanes);
-    hn::Store(hn::IfThenElse(scalar, hn::Set(d, 2.0), hn::IfThenElse(root, one, zero)), d, kind_lanes);
-    hn::Store(hn::IfThenElse(more, one, zero), d, more_lanes);
-    for (std::size_t j = 0; j < N && i + j < n; ++j) {
-      kind[i + j] = FirstRoot(int(kind_lanes[j]));
-      t_out[i + j] = t_lanes[j];
-      more_out[i + j] = std::uint8_t(more_lanes[j] != 0);
+    for (std::size_t g = 0; g < group; ++g) {
+      const auto zero = hn::Zero(d), one = hn::Set(d, 1.0);
+      HWY_ALIGN double t_lanes[HWY_MAX_BYTES / sizeof(double)];
+      HWY_ALIGN double kind_lanes[HWY_MAX_BYTES / sizeof(double)];
+      HWY_ALIGN double more_lanes[HWY_MAX_BYTES / sizeof(double)];
+      hn::Store(hn::Mul(hn::Set(d, 0.5), hn::Add(r[g].lo, r[g].hi)), d, t_lanes);
+      hn::Store(hn::IfThenElse(r[g].scalar, hn::Set(d, 2.0), hn::IfThenElse(r[g].root, one, zero)), d, kind_lanes);
+      hn::Store(hn::IfThenElse(r[g].more, one, zero), d, more_lanes);
+      const std::size_t base = i + g * N;
+      for (std::size_t j = 0; j < N && base + j < n; ++j) {
+        kind[base + j] = FirstRoot(int(kind_lanes[j]));
+        t_out[base + j] = t_lanes[j];
+        more_out[base + j] = std::uint8_t(more_lanes[j] != 0);
+      }
     }
   }
 }
