@@ -176,7 +176,9 @@ HWY_INLINE void IllinoisStep(D d, RootSearch<D>& r) {
   using M = hn::Mask<D>;
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0), half = hn::Set(d, 0.5), minus_one = hn::Set(d, -1.0);
   V t = hn::Div(hn::Sub(hn::Mul(r.lo, r.fhi), hn::Mul(r.hi, r.flo)), hn::Sub(r.fhi, r.flo));
-  t = hn::IfThenElse(hn::And(hn::Gt(t, r.lo), hn::Lt(t, r.hi)), t, hn::Mul(half, hn::Add(r.lo, r.hi)));
+  t = hn::IfThenElse(hn::And(hn::Ge(t, r.lo), hn::Le(t, r.hi)), t, hn::Mul(half, hn::Add(r.lo, r.hi)));
+  const V guard = hn::Set(d, kIllinoisGuard);
+  t = hn::Min(hn::Max(t, hn::Add(r.lo, guard)), hn::Sub(r.hi, guard));
   const V ft = r.f(t);
   const M exact = hn::And(r.active, hn::Eq(ft, zero));
   const M moves = hn::AndNot(exact, r.active);

@@ -19,6 +19,13 @@ namespace ccdlab {
 
 enum class FirstRoot : std::uint8_t { none, root, scalar };
 
+/// The refinement (Illinois false position until the bracket is at most 1e-15 wide) never evaluates f closer
+/// than this to an end of the bracket. Where one end's f is at rounding level the secant lands on that end, and
+/// without the guard the bracket would shrink by bisection only; with it, one evaluation beside that end closes
+/// the bracket (the root lies within the guard) or moves the end by the guard. Less than half the width the loop
+/// stops at, so the guarded point is always inside the bracket.
+inline constexpr double kIllinoisGuard = 0.4e-15;
+
 /// One block of queries in columns: column k of row i at columns[k·stride + i], for rows [0, n).
 struct CubicColumns {
   /// The motion relative to the query's origin: A(t) = A0 + t·dA, and so on; f_scale = L³ (FloatTester).

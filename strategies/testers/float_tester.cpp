@@ -111,7 +111,8 @@ bool earliest_hit(const Moving& A, const Moving& B, const Moving& C, F&& f, doub
     double t = lo;
     for (int it = 0; it < 100 && hi - lo > 1e-15; ++it) {
       t = (lo * fhi - hi * flo) / (fhi - flo);
-      if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+      if (!(t >= lo && t <= hi)) t = 0.5 * (lo + hi);  // NaN, or outside by rounding
+      t = std::min(std::max(t, lo + kIllinoisGuard), hi - kIllinoisGuard);
       double ft = f(t);
       if (ft == 0) { lo = hi = t; break; }
       if ((ft < 0) == (flo < 0)) {
