@@ -5,6 +5,7 @@
 #include <cmath>
 #include <type_traits>
 
+#include "framework/geometry/distance.hpp"
 #include "framework/util/error.hpp"
 
 namespace ccdlab {
@@ -33,6 +34,30 @@ struct WindowStack {
   [[nodiscard]] bool empty() const { return n == 0; }
 };
 
+/// A witness that the features come within `reach` of each other: at time t, the closest points found in
+/// double are within `reach` once their rounding is accounted for. Each point computed (the vertices at t, then
+/// a point of the face or of each edge from the computed weights) is within a few u·M of a point of its feature,
+/// M the largest coordinate of the query; 256·u·M bounds the distance's error with a wide margin. When it holds,
+/// no search can prove the features farther than `reach` all step.
+template <class Query>
+bool certainly_within_at(const Query& q, double t, double reach) {
+  const auto at = [t](const Vec3& a, const Vec3& b) -> Vec3 { return a + t * (b - a); };
+  double distance_sq = 0, largest = 0;
+  if constexpr (std::is_same_v<Query, VertexFaceQuery>) {
+    for (const Vec3* p : {&q.v_t0, &q.f0_t0, &q.f1_t0, &q.f2_t0, &q.v_t1, &q.f0_t1, &q.f1_t1, &q.f2_t1})
+      largest = std::max(largest, p->cwiseAbs().maxCoeff());
+    distance_sq = closest_point_triangle(at(q.v_t0, q.v_t1), at(q.f0_t0, q.f0_t1), at(q.f1_t0, q.f1_t1), at(q.f2_t0, q.f2_t1))
+                      .distance_sq;
+  } else {
+    for (const Vec3* p : {&q.ea0_t0, &q.ea1_t0, &q.eb0_t0, &q.eb1_t0, &q.ea0_t1, &q.ea1_t1, &q.eb0_t1, &q.eb1_t1})
+      largest = std::max(largest, p->cwiseAbs().maxCoeff());
+    distance_sq = closest_segment_segment(at(q.ea0_t0, q.ea0_t1), at(q.ea1_t0, q.ea1_t1), at(q.eb0_t0, q.eb0_t1),
+                                          at(q.eb1_t0, q.eb1_t1))
+                      .distance_sq;
+  }
+  return std::sqrt(distance_sq) * (1 + 0x1p-50) + 256 * 0x1p-53 * largest <= reach;  // false for NaN
+}
+
 template <class Query>
 CcdHit with_coords(CcdHit h, const Query& q) {
   h.coords = contact_coords(q, h.toi);
@@ -53,10 +78,12 @@ separation::Params ConservativeTester::separation_params() const {
 }
 
 template <class Query>
-bool ConservativeTester::may_come_close(const Query& q, double L) const {
+bool ConservativeTester::may_come_close(const Query& q, double L, double t_hint) const {
   separation::Params p = separation_params();
   p.thickness = std::max(2 * params_.delta, 0.5 * kReachFloor) * L;
   if (!(p.thickness > 0)) return true;  // all eight points in one place
+  // Where they touch, a witness at the undecided window answers at once; the search would find the same.
+  if (certainly_within_at(q, t_hint, p.thickness)) return true;
   if constexpr (std::is_same_v<Query, VertexFaceQuery>) return separation::vertex_face(q, p).hit;
   else return separation::edge_edge(q, p).hit;
 }
@@ -85,7 +112,7 @@ CcdHit ConservativeTester::search(const Query& q) const {
       const ExactTester::Decision d = exact_.decide(q);
       h.hit = d.hit;
       h.toi = d.toi_lo;
-    } else if (may_come_close(q, m.extent)) {
+    } else if (may_come_close(q, m.extent, 0.5 * (tl + th))) {
       // Any contact needs f = 0, so the earliest window where f may vanish still bounds the time from below.
       h.hit = true;
       h.toi = earliest_root(m, tl, th);

@@ -57,8 +57,9 @@ class ConservativeTester final : public PrimitiveTester {
 
   [[nodiscard]] separation::Params separation_params() const;
   /// Whether the features may come within 2δ·L during the step (false: proven farther, they cannot touch).
+  /// `t_hint`: a time where they may be closest (a witness is tried there before the search).
   template <class Query>
-  [[nodiscard]] bool may_come_close(const Query& q, double L) const;
+  [[nodiscard]] bool may_come_close(const Query& q, double L, double t_hint) const;
   /// The least relative reach, for δ = 0.
   static constexpr double kReachFloor = 0x1p-40;
 
