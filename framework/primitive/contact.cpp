@@ -1,11 +1,12 @@
 #include "framework/primitive/contact.hpp"
 
-#include "framework/geometry/distance.hpp"
-
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <limits>
+
+#include "framework/geometry/distance.hpp"
 
 namespace ccdlab {
 
@@ -20,26 +21,33 @@ void sort_contacts(Contacts& contacts, ContactSortScratch& scratch) {
     return;
   }
   // The sort is serial, at the end of every step, and a contact is 56 bytes: rather than std::sort moving them
-  // around, the packed keys and their indices are radix-sorted (LSD, 8-bit digits, a digit equal in every key
-  // skipped; stable) and each contact moved once. The packing keeps key()'s order: kind < 2, feature ids in [0, 2³¹).
+  // around, the packed keys and their indices are radix-sorted (LSD, 11-bit digits — a 2048-entry histogram
+  // stays in L1 —, a digit equal in every key skipped; stable) and each contact moved once. The packing keeps
+  // key()'s order: kind, then feature_a, then feature_b, each in as many bits as its largest value needs.
   using Keyed = ContactSortScratch::Keyed;
   std::vector<Keyed>& a = scratch.keys;
   std::vector<Keyed>& b = scratch.swap;
   a.resize(n), b.resize(n);
+  std::uint32_t max_a = 0, max_b = 0;
+  for (const Contact& c : contacts) max_a = std::max(max_a, std::uint32_t(c.feature_a)), max_b = std::max(max_b, std::uint32_t(c.feature_b));
+  const int bits_b = std::bit_width(max_b), bits_ab = std::bit_width(max_a) + bits_b;  // ≤ 62: ids < 2³¹
   std::uint64_t any = 0, every = ~0ull;
   for (std::size_t i = 0; i < n; ++i) {
     const Contact& c = contacts[i];
-    const std::uint64_t key = std::uint64_t(c.kind) << 62 | std::uint64_t(std::uint32_t(c.feature_a)) << 31 |
+    const std::uint64_t key = std::uint64_t(c.kind) << bits_ab | std::uint64_t(std::uint32_t(c.feature_a)) << bits_b |
                               std::uint64_t(std::uint32_t(c.feature_b));
     a[i] = {key, std::uint32_t(i)};
     any |= key, every &= key;
   }
-  for (int shift = 0; shift < 64; shift += 8) {
-    if (((any ^ every) >> shift & 0xFFu) == 0) continue;
-    std::array<std::size_t, 257> start{};
-    for (const Keyed& k : a) ++start[(k.key >> shift & 0xFFu) + 1];
-    for (std::size_t d = 0; d < 256; ++d) start[d + 1] += start[d];
-    for (const Keyed& k : a) b[start[k.key >> shift & 0xFFu]++] = k;
+  constexpr int kDigit = 11;
+  constexpr std::uint64_t kMask = (1u << kDigit) - 1;
+  std::vector<std::size_t>& start = scratch.histogram;
+  for (int shift = 0; shift <= bits_ab; shift += kDigit) {
+    if (((any ^ every) >> shift & kMask) == 0) continue;
+    start.assign(kMask + 2, 0);
+    for (const Keyed& k : a) ++start[(k.key >> shift & kMask) + 1];
+    for (std::size_t d = 0; d <= kMask; ++d) start[d + 1] += start[d];
+    for (const Keyed& k : a) b[start[k.key >> shift & kMask]++] = k;
     a.swap(b);
   }
   scratch.moved.assign(contacts.begin(), contacts.end());

@@ -76,10 +76,11 @@ Vec3 contact_normal(const Contact& c, const Positions& x_t0, const Positions& x_
 /// step cost more than the sort itself (page faults).
 struct ContactSortScratch {
   struct Keyed {
-    std::uint64_t key;  ///< Contact::key() packed: kind · 2⁶² + feature_a · 2³¹ + feature_b
+    std::uint64_t key;  ///< Contact::key() packed: kind, feature_a, feature_b, each in the bits its largest value needs
     std::uint32_t index;
   };
   std::vector<Keyed> keys, swap;
+  std::vector<std::size_t> histogram;
   std::vector<Contact> moved;
 };
 

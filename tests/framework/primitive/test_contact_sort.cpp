@@ -55,6 +55,29 @@ TEST(ContactSort, RadixOrderEqualsKeyOrderAtEverySize) {
     expect_sorted_like_keys(random_contacts(n, std::uint32_t(n) + 7), scratch);
 }
 
+TEST(ContactSort, MeshSizedIdsPackIntoFewerDigits) {
+  // Ids of a mesh (below 2¹⁷ here): the key packs into 35 bits, sorted in four 11-bit digits.
+  std::mt19937 rng(11);
+  Contacts contacts;
+  std::set<std::tuple<ContactKind, Index, Index>> seen;
+  while (contacts.size() < 30000) {
+    Contact c{};
+    c.kind = rng() % 2 ? ContactKind::vf : ContactKind::ee;
+    c.feature_a = Index(rng() % 100000), c.feature_b = Index(rng() % 130000);
+    if (!seen.insert(c.key()).second) continue;
+    c.vertices = {c.feature_a, c.feature_b, Index(contacts.size()), 0};
+    contacts.push_back(c);
+  }
+  ContactSortScratch scratch;
+  expect_sorted_like_keys(contacts, scratch);
+  for (Contact& c : contacts) c.kind = ContactKind::ee, c.feature_a = 7;  // equal digits skipped; feature_b decides
+  Contacts unique;
+  std::set<Index> b_seen;
+  for (const Contact& c : contacts)
+    if (b_seen.insert(c.feature_b).second) unique.push_back(c);
+  expect_sorted_like_keys(unique, scratch);
+}
+
 TEST(ContactSort, KeysThatDoNotPackFallBackToTheComparisonSort) {
   Contacts contacts = random_contacts(600, 3);
   contacts[17].feature_b = -5;  // not a feature id: no 31-bit packing
