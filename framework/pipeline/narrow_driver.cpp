@@ -52,7 +52,7 @@ template <class Gather>
 void NarrowDriver::in_parallel(std::size_t n, std::size_t chunk, const char* phase, double* timing, StepResult& result,
                                Gather&& gather) const {
   PhaseClock(result).parallel(phase, timing, [&](PhaseTrace& trace) {
-    std::vector<PerThread<ThreadState>> local(threads_);
+    std::vector<PerThread<ThreadState>>& local = thread_states();
     parallel_chunks(n, chunk, threads_, trace, [&](std::size_t b, std::size_t e, int tid) {
       run_chunk(local[tid].value, [&](NarrowScratch& scratch, NarrowCounters& c) { gather(b, e, scratch, c); });
     });
@@ -60,8 +60,20 @@ void NarrowDriver::in_parallel(std::size_t n, std::size_t chunk, const char* pha
   });
 }
 
+std::vector<PerThread<NarrowDriver::ThreadState>>& NarrowDriver::thread_states() const {
+  states_.resize(std::size_t(threads_));
+  for (PerThread<ThreadState>& state : states_) {
+    ThreadState& s = state.value;
+    s.contacts.clear();
+    s.counters = {};
+    s.tested_vf.clear();
+    s.tested_ee.clear();
+  }
+  return states_;
+}
+
 NarrowDriver::InTraversal::InTraversal(const NarrowDriver& driver)
-    : driver_(driver), local_(driver.threads_), taken_(driver.threads_) {}
+    : driver_(driver), local_(driver.thread_states()), taken_(driver.threads_) {}
 
 void NarrowDriver::InTraversal::take(int tid, std::span<const FacePair> pairs) {
   const auto t = Clock::now();

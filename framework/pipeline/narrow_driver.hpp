@@ -45,7 +45,7 @@ class NarrowDriver {
       double ms = 0;
     };
     const NarrowDriver& driver_;
-    std::vector<PerThread<ThreadState>> local_;
+    std::vector<PerThread<ThreadState>>& local_;  ///< the driver's, emptied (thread_states)
     std::vector<PerThread<Taken>> taken_;
   };
 
@@ -68,10 +68,15 @@ class NarrowDriver {
                    Gather&& gather) const;
   /// Appends the threads' contacts, counters and recorded pairs to `result`, in thread order; returns its ms.
   double merge(const std::vector<PerThread<ThreadState>>& local, StepResult& result) const;
+  /// One state per thread, emptied but keeping its memory: a dense step's contacts would otherwise grow into
+  /// fresh pages on every thread at every step (each zeroed by the kernel). A parallel loop or an InTraversal
+  /// takes them and merges them before the next one takes them again (a step runs them one after another).
+  std::vector<PerThread<ThreadState>>& thread_states() const;
 
   const NarrowPhase& narrow_;
   int threads_;
   bool record_tested_ = false;
+  mutable std::vector<PerThread<ThreadState>> states_;
 };
 
 }  // namespace ccdlab
