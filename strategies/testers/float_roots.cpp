@@ -165,7 +165,7 @@ HWY_INLINE RootSearch<D> StartSearch(D d, const double* columns, std::size_t str
   }
   r.lo = lo, r.hi = hi, r.flo = flo, r.fhi = fhi, r.side = zero;
   r.scalar = scalar, r.root = root, r.more = more;
-  r.active = hn::And(root, hn::Gt(hn::Sub(hi, lo), hn::Set(d, 1e-15)));
+  r.active = hn::And(root, hn::Gt(hn::Sub(hi, lo), hn::Set(d, kIllinoisWidth)));
   return r;
 }
 
@@ -191,7 +191,7 @@ HWY_INLINE void IllinoisStep(D d, RootSearch<D>& r) {
   r.lo = hn::IfThenElse(hn::Or(move_lo, exact), t, r.lo), r.flo = hn::IfThenElse(move_lo, ft, r.flo);
   r.hi = hn::IfThenElse(hn::Or(move_hi, exact), t, r.hi), r.fhi = hn::IfThenElse(move_hi, ft, r.fhi);
   r.side = hn::IfThenElse(move_lo, minus_one, hn::IfThenElse(move_hi, one, r.side));
-  r.active = hn::AndNot(exact, hn::And(r.active, hn::Gt(hn::Sub(r.hi, r.lo), hn::Set(d, 1e-15))));
+  r.active = hn::AndNot(exact, hn::And(r.active, hn::Gt(hn::Sub(r.hi, r.lo), hn::Set(d, kIllinoisWidth))));
 }
 
 void FirstCoplanarRoots(const double* columns, std::size_t stride, std::size_t n, double rel_tolerance,
@@ -208,7 +208,7 @@ void FirstCoplanarRoots(const double* columns, std::size_t stride, std::size_t n
     RootSearch<D> r[kGroup];
     for (std::size_t g = 0; g < kGroup; ++g) r[g] = StartSearch(d, columns, stride, i + (g < group ? g : 0) * N, rel_tolerance);
     for (std::size_t g = group; g < kGroup; ++g) r[g].active = hn::Ne(hn::Zero(d), hn::Zero(d));
-    for (int it = 0; it < 100; ++it) {
+    for (int it = 0; it < kIllinoisSteps; ++it) {
       bool any = false;
       for (std::size_t g = 0; g < kGroup; ++g) any |= !hn::AllFalse(d, r[g].active);
       if (!any) break;

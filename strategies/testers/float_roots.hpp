@@ -19,12 +19,15 @@ namespace ccdlab {
 
 enum class FirstRoot : std::uint8_t { none, root, scalar };
 
-/// The refinement (Illinois false position until the bracket is at most 1e-15 wide) never evaluates f closer
-/// than this to an end of the bracket. Where one end's f is at rounding level the secant lands on that end, and
-/// without the guard the bracket would shrink by bisection only; with it, one evaluation beside that end closes
-/// the bracket (the root lies within the guard) or moves the end by the guard. Less than half the width the loop
-/// stops at, so the guarded point is always inside the bracket.
+/// The root refinement, scalar and batched alike: Illinois false position until the bracket is at most
+/// kIllinoisWidth wide, at most kIllinoisSteps steps, never evaluating f closer than kIllinoisGuard to an end of
+/// the bracket. Where one end's f is at rounding level the secant lands on that end, and without the guard the
+/// bracket would shrink by bisection only; with it, one evaluation beside that end closes the bracket (the root
+/// lies within the guard) or moves the end by the guard.
+inline constexpr double kIllinoisWidth = 1e-15;
+inline constexpr int kIllinoisSteps = 100;
 inline constexpr double kIllinoisGuard = 0.4e-15;
+static_assert(2 * kIllinoisGuard < kIllinoisWidth, "the guarded point must lie inside every bracket still refined");
 
 /// One block of queries in columns: column k of row i at columns[k·stride + i], for rows [0, n).
 struct CubicColumns {

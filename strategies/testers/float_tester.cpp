@@ -109,7 +109,7 @@ bool earliest_hit(const Moving& A, const Moving& B, const Moving& C, F&& f, doub
     // Illinois false position: monotone on [lo, hi], one root.
     int side = 0;
     double t = lo;
-    for (int it = 0; it < 100 && hi - lo > 1e-15; ++it) {
+    for (int it = 0; it < kIllinoisSteps && hi - lo > kIllinoisWidth; ++it) {
       t = (lo * fhi - hi * flo) / (fhi - flo);
       if (!(t >= lo && t <= hi)) t = 0.5 * (lo + hi);  // NaN, or outside by rounding
       t = std::min(std::max(t, lo + kIllinoisGuard), hi - kIllinoisGuard);
