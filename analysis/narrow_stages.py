@@ -43,12 +43,13 @@ def stages(step):
     gathered_from = c["candidate_pairs"] - n.get("triangle_culled", 0)  # candidates whose pairs are gathered
     plane_in = n["plane_culled"] + n["split_culled"] + n["proximity_culled"] + tests
     split_in = plane_in - n["plane_culled"]
+    proximity_in = n.get("proximity_tested", split_in - n["split_culled"])  # 0 in steps where stage 4 does not run
     return [("stage 0 (whole triangles)", tri_in, n.get("triangle_culled", 0), "triangle_ms"),
             ("gather (candidates → feature pairs; + orphans)", gathered_from, None, "gather_ms"),
             ("stage 1 (feature 26-DOPs)", pairs, n["kdop_culled"], "kdop_ms"),
             ("stage 2 (plane)", plane_in, n["plane_culled"], "plane_ms"),
             ("stage 3 (split)", split_in, n["split_culled"], "split_ms"),
-            ("stage 4 (proximity)", split_in - n["split_culled"], n["proximity_culled"], "proximity_ms"),
+            ("stage 4 (proximity)", proximity_in, n["proximity_culled"], "proximity_ms"),
             ("elementary tests", tests, None, "test_ms")]
 
 

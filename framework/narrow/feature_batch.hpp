@@ -15,7 +15,7 @@ namespace ccdlab {
 struct FeatureBatch {
   UninitializedVector<VertexFacePair> vf;  // gather grows them by the most a chunk can append, then trims
   UninitializedVector<EdgeEdgePair> ee;
-  /// Set when the gather ran stage 1's coarse test already and counted the pairs (NarrowPhase::gather_orphans).
+  /// Set when the gather ran stage 1 (coarse or float) already and counted the pairs (NarrowPhase::gather_orphans).
   bool coarse_done = false;
   /// After stage 3 (batched mode, testers with a cull reach): per pair, VF's then EE's, the start of its first
   /// open window. Before it the features were proven farther apart than the reach, so no contact the tester

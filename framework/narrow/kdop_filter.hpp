@@ -65,6 +65,13 @@ namespace ccdlab {
 /// tests above, float (vf_keep, ee_keep) or coarse (the _coarse ones).
 void vf_keep(const FeatureBounds& bounds, const TriMesh& mesh, std::span<const VertexFacePair> pairs, std::uint8_t* keep);
 void ee_keep(const FeatureBounds& bounds, const TriMesh& mesh, std::span<const EdgeEdgePair> pairs, std::uint8_t* keep);
+/// vf_keep / ee_keep, and the smallest over the pairs of each pair's largest separation along a unit direction
+/// of the 26-DOP (positive: every pair is apart by at least about that much; +inf for no pairs). Rounded to
+/// nearest twice: a caller that needs a bound takes off a relative 10⁻⁶ (OrphanCertificates).
+float vf_keep_gap(const FeatureBounds& bounds, const TriMesh& mesh, std::span<const VertexFacePair> pairs,
+                  std::uint8_t* keep);
+float ee_keep_gap(const FeatureBounds& bounds, const TriMesh& mesh, std::span<const EdgeEdgePair> pairs,
+                  std::uint8_t* keep);
 void vf_keep_coarse(const FeatureBounds& bounds, const TriMesh& mesh, std::span<const VertexFacePair> pairs,
                     std::uint8_t* keep);
 void ee_keep_coarse(const FeatureBounds& bounds, const TriMesh& mesh, std::span<const EdgeEdgePair> pairs,

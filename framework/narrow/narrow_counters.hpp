@@ -11,6 +11,7 @@ struct NarrowCounters {
   std::uint64_t orphan_vf = 0;       ///< of which from the orphan set
   std::uint64_t orphan_ee = 0;
   std::uint64_t orphans_culled = 0;  ///< orphan pairs inside a patch skipped by normal-cone culling
+  std::uint64_t orphans_unmoved = 0;  ///< orphan pairs skipped: their block moved too little since its last test (OrphanCertificates)
   std::uint64_t orphans_carried = 0;  ///< orphan pairs gathered with a candidate that carries them (not in orphan_vf/ee)
   std::uint64_t candidates_gathered = 0;  ///< candidate face pairs whose feature pairs were gathered (after stage 0)
   std::uint64_t triangle_tested = 0;  ///< candidate face pairs stage 0 ran on (batched only, steps where it pays)
@@ -19,7 +20,8 @@ struct NarrowCounters {
   std::uint64_t kdop_culled = 0;     ///< pairs whose swept feature 26-DOPs are disjoint (stage 1, every mode)
   std::uint64_t plane_culled = 0;    ///< pairs proven to stay off each other's plane/line (stage 2, batched only)
   std::uint64_t split_culled = 0;    ///< pairs proven apart on every half or sixteenth of the step (stage 3, batched only)
-  std::uint64_t proximity_culled = 0;  ///< pairs proven apart on the sixteenths stage 3 left open (stage 4, batched only)
+  std::uint64_t proximity_tested = 0;  ///< pairs stage 4 received (batched only; 0 in steps where it does not run)
+  std::uint64_t proximity_culled = 0;  ///< of which proven apart on the sixteenths stage 3 left open
   std::uint64_t vf_tests = 0;        ///< elementary VF tests run (survivors of the culling stages)
   std::uint64_t ee_tests = 0;        ///< elementary EE tests run
   std::uint64_t orphan_tests = 0;    ///< of the VF + EE tests, those from the orphan set
@@ -39,11 +41,12 @@ struct NarrowCounters {
 
   NarrowCounters& operator+=(const NarrowCounters& o) {
     vf_pairs += o.vf_pairs, ee_pairs += o.ee_pairs, orphan_vf += o.orphan_vf, orphan_ee += o.orphan_ee;
-    orphans_culled += o.orphans_culled, orphans_carried += o.orphans_carried, candidates_gathered += o.candidates_gathered;
+    orphans_culled += o.orphans_culled, orphans_unmoved += o.orphans_unmoved, orphans_carried += o.orphans_carried, candidates_gathered += o.candidates_gathered;
     triangle_tested += o.triangle_tested, triangle_culled += o.triangle_culled, triangle_fine += o.triangle_fine, triangle_ns += o.triangle_ns;
     kdop_culled += o.kdop_culled, plane_culled += o.plane_culled;
     split_culled += o.split_culled, split_ns += o.split_ns;
-    proximity_culled += o.proximity_culled, proximity_ns += o.proximity_ns;
+    proximity_tested += o.proximity_tested, proximity_culled += o.proximity_culled;
+    proximity_ns += o.proximity_ns;
     vf_tests += o.vf_tests, ee_tests += o.ee_tests, orphan_tests += o.orphan_tests;
     tests_filtered += o.tests_filtered, tests_fallback += o.tests_fallback;
     contacts_vf += o.contacts_vf, contacts_ee += o.contacts_ee;

@@ -90,6 +90,7 @@ void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const
   bounds_ = &bounds;
   triangle_stage_ = options_.mode == NarrowMode::batched && tester_.cull_reach() && triangle_rule_.runs(steps_);
   triangle_box_pass_ = !end_boxes;
+  proximity_stage_ = proximity_rule_.runs(steps_);
   if (triangle_stage_) float_frames_.update(x_t0.data(), x_t1.data(), x_t0.size(), mesh_.faces(), triangle_box_pass_);
   const OrphanSet& orphans = reps_.orphans();
   switch (options_.carry_orphans) {
@@ -102,19 +103,24 @@ void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const
   }
 }
 
-double counted_work_per_candidate(const NarrowCounters& c, std::size_t faces) {
+double counted_work_per_candidate(const NarrowCounters& c, std::size_t faces, double test_cost) {
   const std::uint64_t candidates = c.candidates_gathered + c.triangle_culled;
   if (candidates == 0) return 0;
   const auto less = [](std::uint64_t a, std::uint64_t b) { return a - std::min(a, b); };
   const std::uint64_t s1 = c.vf_pairs + c.ee_pairs, s2 = less(s1, c.kdop_culled), s3 = less(s2, c.plane_culled),
-                      s4 = less(s3, c.split_culled);
+                      s4 = c.proximity_tested;
   const double stage0 = c.triangle_tested == 0 ? 0.0
                                                : StageNs::frames * double(faces) + StageNs::box_pass * double(c.triangle_tested) +
                                                      StageNs::fine_pass * double(c.triangle_fine);
   const double work = stage0 + StageNs::gather * double(c.candidates_gathered) + StageNs::kdop * double(s1) +
                       StageNs::plane * double(s2) + StageNs::split * double(s3) + StageNs::proximity * double(s4) +
-                      StageNs::test * double(c.vf_tests + c.ee_tests);
+                      StageNs::test * test_cost * double(c.vf_tests + c.ee_tests);
   return work / double(candidates);
+}
+
+void ProximityStageRule::record(const NarrowCounters& step, double test_cost) {
+  if (step.proximity_tested > 0)
+    pays_ = StageNs::test * test_cost * double(step.proximity_culled) > StageNs::proximity * double(step.proximity_tested);
 }
 
 bool TriangleStageRule::runs(std::uint64_t step) const {
@@ -125,14 +131,17 @@ bool TriangleStageRule::runs(std::uint64_t step) const {
   return work_with_ < work_without_;
 }
 
-void TriangleStageRule::record(bool ran, const NarrowCounters& step, std::size_t faces) {
+void TriangleStageRule::record(bool ran, const NarrowCounters& step, std::size_t faces, double test_cost) {
   if (step.candidates_gathered + step.triangle_culled > 0)
-    (ran ? work_with_ : work_without_) = counted_work_per_candidate(step, faces);
+    (ran ? work_with_ : work_without_) = counted_work_per_candidate(step, faces, test_cost);
 }
 
 void NarrowPhase::end_step(const NarrowCounters& step) {
   if (step.triangle_tested > 0) triangle_cull_rate_ = double(step.triangle_culled) / double(step.triangle_tested);
-  if (options_.mode == NarrowMode::batched) triangle_rule_.record(triangle_stage_, step, mesh_.faces().size());
+  if (options_.mode == NarrowMode::batched) {
+    triangle_rule_.record(triangle_stage_, step, mesh_.faces().size(), tester_.relative_test_cost());
+    proximity_rule_.record(step, tester_.relative_test_cost());
+  }
   last_candidates_ = step.candidates_gathered + step.triangle_culled;
   ++steps_;
 }
@@ -160,29 +169,52 @@ void NarrowPhase::gather(std::span<const FacePair> candidates, NarrowScratch& sc
   c.orphans_carried += reps_.append_pairs(scratch.candidates, batch.vf, batch.ee, true, carry_orphans_);
 }
 
-void NarrowPhase::gather_orphans(std::span<const VertexFacePair> vf, std::span<const EdgeEdgePair> ee,
-                                 FeatureBatch& batch, NarrowCounters& c) const {
+void NarrowPhase::begin_orphans(const Positions& x_t0, const Positions& x_t1) {
+  if (options_.mode == NarrowMode::batched) certificates_.begin_step(x_t0, x_t1, tester_.thickness());
+}
+
+void NarrowPhase::gather_orphans(std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters& c) const {
+  const OrphanSet& orphans = orphans_to_test();
+  const std::size_t nvf = orphans.vf.size(), n = nvf + orphans.ee.size();
+  e = std::min(e, n);
+  const auto vf = [&](std::size_t lo, std::size_t hi) {
+    return std::span(orphans.vf).subspan(std::min(lo, nvf), std::min(hi, nvf) - std::min(lo, nvf));
+  };
+  const auto ee = [&](std::size_t lo, std::size_t hi) {
+    return std::span(orphans.ee).subspan(std::max(lo, nvf) - nvf, std::max(hi, nvf) - std::max(lo, nvf));
+  };
   if (options_.mode == NarrowMode::scalar) {  // stage 1 runs pair by pair in run()
-    batch.vf.insert(batch.vf.end(), vf.begin(), vf.end());
-    batch.ee.insert(batch.ee.end(), ee.begin(), ee.end());
+    batch.vf.insert(batch.vf.end(), vf(b, e).begin(), vf(b, e).end());
+    batch.ee.insert(batch.ee.end(), ee(b, e).begin(), ee(b, e).end());
     return;
   }
   const auto t = Clock::now();
-  constexpr std::size_t kPiece = 1024;  // flags on the stack, in L1
-  std::uint8_t keep[kPiece];
-  for (std::size_t b = 0; b < vf.size(); b += kPiece) {
-    const auto piece = vf.subspan(b, std::min(kPiece, vf.size() - b));
-    vf_keep_coarse(*bounds_, mesh_, piece, keep);
-    append_kept(piece, keep, batch.vf);
+  const bool certified = !carry_orphans_;  // the loop tests the whole set, which the certificates cover
+  constexpr std::size_t kBlock = OrphanCertificates::kBlock;
+  std::uint8_t keep[kBlock];  // flags on the stack, in L1
+  std::uint64_t gathered = 0;
+  for (std::size_t s = b; s < e;) {
+    const std::size_t k = OrphanCertificates::block_of(s), block_end = std::min((k + 1) * kBlock, n),
+                      piece_end = std::min(e, block_end);
+    const bool whole = certified && s == k * kBlock && piece_end == block_end;
+    if (whole && certificates_.holds(k)) {
+      c.orphans_unmoved += piece_end - s;
+      s = piece_end;
+      continue;
+    }
+    const auto pv = vf(s, piece_end);
+    const auto pe = ee(s, piece_end);
+    float gap = vf_keep_gap(*bounds_, mesh_, pv, keep);
+    append_kept(pv, keep, batch.vf);
+    gap = std::min(gap, ee_keep_gap(*bounds_, mesh_, pe, keep));
+    append_kept(pe, keep, batch.ee);
+    if (whole) certificates_.certify(k, gap);
+    c.vf_pairs += pv.size();
+    c.ee_pairs += pe.size();
+    gathered += pv.size() + pe.size();
+    s = piece_end;
   }
-  for (std::size_t b = 0; b < ee.size(); b += kPiece) {
-    const auto piece = ee.subspan(b, std::min(kPiece, ee.size() - b));
-    ee_keep_coarse(*bounds_, mesh_, piece, keep);
-    append_kept(piece, keep, batch.ee);
-  }
-  c.vf_pairs += vf.size();
-  c.ee_pairs += ee.size();
-  c.kdop_culled += vf.size() + ee.size() - batch.vf.size() - batch.ee.size();
+  c.kdop_culled += gathered - batch.vf.size() - batch.ee.size();
   c.kdop_ns += ns_since(t);
   batch.coarse_done = true;
 }
@@ -299,15 +331,19 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   c.split_culled += plane_kept - split_kept;
   const auto t_proximity = Clock::now();
   c.split_ns += ns_since(t_split);
-  // Stage 4 on the rows stage 3 kept, in place (same row numbers): the distance on their open windows.
-  proximity_filter(plane, kept_vf, rows, scratch.open.data(), kSplitLevels, scratch.keep.data(), scratch.proximity);
+  // Stage 4 on the rows stage 3 kept, in place (same row numbers): the distance on their open windows, in the
+  // steps where it pays (ProximityStageRule).
+  if (proximity_stage_) {
+    proximity_filter(plane, kept_vf, rows, scratch.open.data(), kSplitLevels, scratch.keep.data(), scratch.proximity);
+    c.proximity_tested += split_kept;
+  }
   // Each pair's earliest possible time: the start of its first open window.
   batch.from.resize(rows);
   for (std::size_t i = 0; i < rows; ++i)
     batch.from[i] = scratch.open[i] ? float(std::countr_zero(scratch.open[i])) / float(1 << kSplitLevels) : 1.0f;
   compact(batch, scratch.keep);
   c.proximity_culled += split_kept - batch.vf.size() - batch.ee.size();
-  c.proximity_ns += ns_since(t_proximity);
+  c.proximity_ns += ns_since(t_proximity);  // its compaction and `from` too, which run either way
 }
 
 void NarrowPhase::test(const FeatureBatch& batch, Contacts& out, NarrowCounters& c) const {

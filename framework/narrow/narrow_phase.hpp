@@ -8,7 +8,7 @@
 //            (batched: a coarse 16-bit copy first, the float test itself after stage 4)
 //   stage 2  certified plane test, SIMD over the batch (plane_filter.hpp)   batched mode, testers with a reach
 //   stage 3  the plane test and the boxes on parts of the step (split_filter.hpp)               〃
-//   stage 4  the features' distance on the sixteenths stage 3 left open (proximity_filter.hpp)  〃
+//   stage 4  the features' distance on the sixteenths stage 3 left open (proximity_filter.hpp)  〃, where it pays
 //   test     the PrimitiveTester on the survivors; hits become contacts
 //
 // `scalar` mode runs stage 1 and the test pair by pair, as a student would write it; `batched` runs each
@@ -21,6 +21,7 @@
 #include "framework/narrow/feature_batch.hpp"
 #include "framework/swept/feature_bounds.hpp"
 #include "framework/narrow/narrow_counters.hpp"
+#include "framework/narrow/orphan_certificates.hpp"
 #include "framework/narrow/representatives.hpp"
 #include "framework/primitive/tester.hpp"
 #include "framework/traversal/candidates.hpp"
@@ -51,17 +52,35 @@ class TriangleStageRule {
   /// Whether stage 0 runs in step `step` (0 = a pipeline's first), given that it can (batched, a tester reach).
   [[nodiscard]] bool runs(std::uint64_t step) const;
   /// A step's merged counters, and whether stage 0 ran in it.
-  void record(bool ran, const NarrowCounters& step, std::size_t faces);
+  void record(bool ran, const NarrowCounters& step, std::size_t faces, double test_cost = 1);
 
  private:
   double work_with_ = -1;     ///< counted work per candidate of the last step with stage 0 (−1: none yet)
   double work_without_ = -1;  ///< … and of the last step without it
 };
 
+/// Whether stage 4 (proximity_filter.hpp) runs in a step: when, in the last step that ran it, the tests it saved
+/// (pairs removed × a test's cost, PrimitiveTester::relative_test_cost) outweighed what it cost (pairs received ×
+/// its cost per pair). Stage 4 is exact, so the contacts are the same either way; on a dense step nearly every
+/// pair it receives is a contact, and it removes too few to pay (docs/narrow-phase.md, "Contact-dense steps").
+/// It runs in the first step and every kRemeasure-th (0 mod 16, so that stage 0's measuring steps 2 and 3 see
+/// the same stage 4), and counts from whole steps, as stage 0's rule.
+class ProximityStageRule {
+ public:
+  static constexpr std::uint64_t kRemeasure = 16;
+  [[nodiscard]] bool runs(std::uint64_t step) const { return step % kRemeasure == 0 || pays_; }
+  /// A step's merged counters (stage 4 ran in it when it received pairs) and the tester's relative test cost.
+  void record(const NarrowCounters& step, double test_cost);
+
+ private:
+  bool pays_ = true;
+};
+
 /// The narrow phase's work in a step, counted: the pairs each stage received (stage 0's two passes, the gather,
-/// stages 1–4, the elementary tests) times that stage's ns per pair (narrow_phase.cpp, StageNs), per candidate
-/// the traversal found; 0 without candidates. A mesh of `faces` triangles (stage 0's float frames).
-[[nodiscard]] double counted_work_per_candidate(const NarrowCounters& c, std::size_t faces);
+/// stages 1–4, the elementary tests, these × `test_cost`) times that stage's ns per pair (narrow_phase.cpp,
+/// StageNs), per candidate the traversal found; 0 without candidates. A mesh of `faces` triangles (stage 0's
+/// float frames).
+[[nodiscard]] double counted_work_per_candidate(const NarrowCounters& c, std::size_t faces, double test_cost = 1);
 
 struct NarrowOptions {
   NarrowMode mode = NarrowMode::batched;
@@ -74,7 +93,8 @@ class NarrowPhase {
   /// `self_collision(face)`: whether the face's body collides with itself (orphan sets exist only there).
   template <class Pred>
   NarrowPhase(const TriMesh& mesh, const PrimitiveTester& tester, NarrowOptions options, Pred&& self_collision)
-      : mesh_(mesh), tester_(tester), options_(options), reps_(mesh, options.representative, self_collision) {}
+      : mesh_(mesh), tester_(tester), options_(options), reps_(mesh, options.representative, self_collision),
+        certificates_(reps_.orphans(), mesh) {}
 
   [[nodiscard]] const NarrowOptions& options() const { return options_; }
   [[nodiscard]] const Representatives& representatives() const { return reps_; }
@@ -97,10 +117,13 @@ class NarrowPhase {
   /// (batched mode, a tester with a reach, and stage 0 paying: narrow_phase.cpp), those of the candidates it
   /// keeps (`cull = false`: every candidate's, as the ownership tests record them).
   void gather(std::span<const FacePair> candidates, NarrowScratch& scratch, NarrowCounters& c, bool cull = true) const;
-  /// Appends a piece of the orphan set to an empty `batch`. Batched mode runs stage 1's coarse test here, on the
-  /// set where it lies, and copies only the pairs it keeps, counting them as run() would.
-  void gather_orphans(std::span<const VertexFacePair> vf, std::span<const EdgeEdgePair> ee, FeatureBatch& batch,
-                      NarrowCounters& c) const;
+  /// Before the orphan loop of a step (after begin_step): the orphan blocks' budgets lose the motion since the
+  /// last step (orphan_certificates.hpp).
+  void begin_orphans(const Positions& x_t0, const Positions& x_t1);
+  /// Appends the pairs [b, e) of orphans_to_test() (VF first, then EE) to an empty `batch`. Batched mode skips
+  /// the blocks whose certificate holds (orphan_certificates.hpp), runs stage 1's float test on the others where
+  /// the set lies, measuring their gaps, and copies only the pairs it keeps, counting them as run() would.
+  void gather_orphans(std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters& c) const;
   /// Culls and tests the pairs of `batch` (consumed: it holds the survivors afterwards); appends contacts.
   /// `cull = false` skips the culling stages (brute-force references).
   void run(NarrowScratch& scratch, Contacts& out, NarrowCounters& c, bool cull = true) const;
@@ -131,6 +154,7 @@ class NarrowPhase {
   EarliestCut* earliest_ = nullptr;
   NarrowOptions options_;
   Representatives reps_;
+  OrphanCertificates certificates_;   ///< over reps_.orphans(): used in the steps whose orphan loop tests them all
   const FeatureBounds* bounds_ = nullptr;
   const Positions* x_t0_ = nullptr;
   const Positions* x_t1_ = nullptr;
@@ -139,6 +163,8 @@ class NarrowPhase {
   FloatFrames float_frames_;          ///< what stage 0 reads, made in begin_step when it runs
   double triangle_cull_rate_ = 0;     ///< its cull rate in the last step that ran it
   TriangleStageRule triangle_rule_;   ///< whether stage 0 runs in a step
+  bool proximity_stage_ = true;       ///< stage 4 runs in this step (begin_step)
+  ProximityStageRule proximity_rule_;
   bool carry_orphans_ = false;        ///< the candidates carry the orphans in this step (begin_step)
   std::uint64_t last_candidates_ = 0;  ///< the candidates of the last step
   std::uint64_t steps_ = 0;

@@ -133,9 +133,11 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
       }
     });
 
-  // 3–4. Traversal, its candidates into the narrow phase as they are found; then the orphan set.
+  // 3–4. Traversal, its candidates into the narrow phase as they are found; then the orphan set, less the blocks
+  //      that moved too little since they were last tested (orphan_certificates.hpp).
   traversal_.test_end_boxes(ends_in_step_);
   traversal_.run(std::size_t(mesh_.num_faces()), narrow_driver_, result);
+  clock.serial("orphan_motion", &tm.orphan_ms, [&] { narrow_.begin_orphans(x_t0, x_t1); });
   narrow_driver_.test_orphans(strategies_.normal_cones ? &face_patch_ : nullptr, result);
   narrow_.end_step(result.counters);
   end_box_rule_.record(ends_in_step_, result.counters.candidate_pairs);

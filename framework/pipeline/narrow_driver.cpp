@@ -13,7 +13,7 @@ using Clock = std::chrono::steady_clock;
 // Chunk sizes: large enough to amortise a hand-out, a clock read and a batch's padding, small enough to balance
 // (docs/pipeline.md). An orphan costs a few ns at stage 1, a candidate ~50 feature pairs: hence the ratio.
 constexpr std::size_t kCandidateChunk = 512;
-constexpr std::size_t kOrphanChunk = 8192;
+constexpr std::size_t kOrphanChunk = 128 * OrphanCertificates::kBlock;  // whole blocks (their certificates)
 
 }  // namespace
 
@@ -118,15 +118,10 @@ void NarrowDriver::test_orphans(const std::vector<Index>* face_patch, StepResult
   const std::size_t nvf = orphans.vf.size(), n = nvf + orphans.ee.size();
   in_parallel(n, kOrphanChunk, "orphans", &result.timings.orphan_ms, result, [&](std::size_t b, std::size_t e, NarrowScratch& scratch, NarrowCounters& lc) {
     FeatureBatch& batch = scratch.batch;
-    if (!face_patch) {  // the chunk as it is
-      const std::span<const VertexFacePair> vf(orphans.vf.data() + std::min(b, nvf), orphans.vf.data() + std::min(e, nvf));
-      const std::span<const EdgeEdgePair> ee(orphans.ee.data() + (std::max(b, nvf) - nvf), orphans.ee.data() + (std::max(e, nvf) - nvf));
-      if (record_tested_) {  // every orphan is recorded as gathered: copy them whole
-        batch.vf.insert(batch.vf.end(), vf.begin(), vf.end());
-        batch.ee.insert(batch.ee.end(), ee.begin(), ee.end());
-      } else {
-        narrow_.gather_orphans(vf, ee, batch, lc);
-      }
+    if (!face_patch && !record_tested_) return narrow_.gather_orphans(b, e, batch, lc);
+    if (!face_patch) {  // every orphan is recorded as gathered: copy them whole
+      batch.vf.insert(batch.vf.end(), orphans.vf.begin() + std::ptrdiff_t(std::min(b, nvf)), orphans.vf.begin() + std::ptrdiff_t(std::min(e, nvf)));
+      batch.ee.insert(batch.ee.end(), orphans.ee.begin() + std::ptrdiff_t(std::max(b, nvf) - nvf), orphans.ee.begin() + std::ptrdiff_t(std::max(e, nvf) - nvf));
       return;
     }
     for (std::size_t i = b; i < std::min(e, nvf); ++i) {

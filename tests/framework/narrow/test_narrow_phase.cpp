@@ -456,6 +456,34 @@ TEST(FeatureBounds, SimdKeepAgreesWithThePlainVersionOnEveryTarget) {
     ee_keep_coarse(bounds, mesh, pairs.ee, keep_coarse.data() + nvf);
     EXPECT_EQ(keep, expect) << target;
     EXPECT_EQ(keep_coarse, expect_coarse) << target;
+    // The measuring version keeps the same pairs, and each pair's gap is its largest separation on a unit axis.
+    std::vector<std::uint8_t> keep_gap(expect.size());
+    EXPECT_EQ(vf_keep_gap(bounds, mesh, std::span(pairs.vf).first(0), keep_gap.data()), HUGE_VALF);
+    for (std::size_t i = 0; i < expect.size(); i += 7) {
+      const bool vf = i < nvf;
+      const float gap = vf ? vf_keep_gap(bounds, mesh, std::span(pairs.vf).subspan(i, 1), keep_gap.data() + i)
+                           : ee_keep_gap(bounds, mesh, std::span(pairs.ee).subspan(i - nvf, 1), keep_gap.data() + i);
+      EXPECT_EQ(keep_gap[i], expect[i]) << target << " pair " << i;
+      std::array<Index, 4> u{}, w{};  // the vertices of each side
+      std::size_t nu = 0, nw = 0;
+      if (vf) {
+        u[nu++] = pairs.vf[i].v;
+        for (Index v : mesh.face(pairs.vf[i].f)) w[nw++] = v;
+      } else {
+        for (Index v : mesh.edge(pairs.ee[i - nvf].a)) u[nu++] = v;
+        for (Index v : mesh.edge(pairs.ee[i - nvf].b)) w[nw++] = v;
+      }
+      double largest = 0;
+      for (int k = 0; k < PaddedDop::kAxes; ++k) {
+        double umin = HUGE_VAL, umax = -HUGE_VAL, wmin = HUGE_VAL, wmax = -HUGE_VAL;
+        for (std::size_t j = 0; j < nu; ++j) umin = std::min<double>(umin, bounds.dops()[u[j]].min[k]), umax = std::max<double>(umax, bounds.dops()[u[j]].max[k]);
+        for (std::size_t j = 0; j < nw; ++j) wmin = std::min<double>(wmin, bounds.dops()[w[j]].min[k]), wmax = std::max<double>(wmax, bounds.dops()[w[j]].max[k]);
+        const auto& axis = KDop<26>::axes[std::size_t(k)];
+        largest = std::max(largest, std::max(umin - wmax, wmin - umax) / std::sqrt(double(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2])));
+      }
+      EXPECT_NEAR(gap, largest, 1e-6 * std::abs(largest) + 1e-12) << target << " pair " << i;
+      EXPECT_EQ(gap > 0, !expect[i]) << target << " pair " << i;
+    }
     if (first_coarse.empty()) first_coarse = keep_coarse;
     EXPECT_EQ(keep_coarse, first_coarse) << target << ": the quantizers of two targets disagree";
   });
@@ -656,6 +684,139 @@ TEST(NarrowModes, EveryModeRuleTargetAndKReportsTheSameContactsAsBruteForce) {
       CcdPipeline pipeline(mesh, single_cloth_body(mesh), strategies(tester, {}, 18, 2));
       EXPECT_EQ(contact_set_hash(pipeline.step(x0, x1).contacts), expect) << tester << " on " << target;
     });
+  }
+}
+
+TEST(ProximityStageRule, RunsInItsMeasuringStepsAndWhereTheTestsItSavedOutweighedIt) {
+  ProximityStageRule rule;
+  NarrowCounters dense;  // 10% of what it receives removed: the saved float tests cost less than stage 4
+  dense.proximity_tested = 1000, dense.proximity_culled = 100;
+  EXPECT_TRUE(rule.runs(0) && rule.runs(1));  // nothing measured yet
+  rule.record(dense, 1.0);
+  EXPECT_FALSE(rule.runs(1));
+  EXPECT_FALSE(rule.runs(15));
+  EXPECT_TRUE(rule.runs(16));  // measures again
+  rule.record(NarrowCounters{}, 1.0);  // a step without stage 4 (or without pairs) changes nothing
+  EXPECT_FALSE(rule.runs(17));
+  rule.record(dense, 10.0);  // the same removal pays with tests ten times dearer (`conservative`)
+  EXPECT_TRUE(rule.runs(17));
+  NarrowCounters sparse = dense;  // most of it removed: pays with `float` too
+  sparse.proximity_culled = 700;
+  rule.record(dense, 1.0), rule.record(sparse, 1.0);
+  EXPECT_TRUE(rule.runs(18));
+}
+
+TEST(NarrowModes, StageFourRunsWhereItPaysAndTheContactsStayTheSame) {
+  // A crumpled sheet mirrored through its plane, one step replayed: its folds pass through each other, so most
+  // pairs that reach stage 4 are contacts. Each tester's pipeline decides from its first step whether stage 4
+  // runs in the next ones (not for `float`, whose tests are cheap; for `conservative`); every step reports the
+  // contacts of brute force, with stage 4 or without.
+  MeshData g = test::grid(12, 12);
+  TriMesh mesh(Index(g.positions.size()), g.faces);
+  std::mt19937 rng(17);
+  const Positions x0 = test::crumple(g.positions, rng, 0.05);
+  Positions x1 = x0;
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (Vec3& p : x1) p.z() = -p.z() + 0.01 * u(rng);
+  CollisionRules rules(mesh, single_cloth_body(mesh));
+  std::set<bool> decisions;
+  for (const char* tester : {"float", "conservative"}) {
+    CcdPipeline pipeline(mesh, single_cloth_body(mesh), strategies(tester, {}, 18, 2));
+    const std::uint64_t expect = contact_set_hash(brute_force_contacts(mesh, rules, x0, x1, *make_tester(tester), true));
+    const StepResult first = pipeline.step(x0, x1);
+    EXPECT_EQ(contact_set_hash(first.contacts), expect) << tester;
+    const NarrowCounters& c = first.counters;
+    ASSERT_GT(c.proximity_tested, 0u) << tester;
+    ProximityStageRule rule;  // what the pipeline's own rule must have concluded
+    rule.record(c, make_tester(tester)->relative_test_cost());
+    const bool pays = rule.runs(1);
+    decisions.insert(pays);
+    for (int s = 1; s < 3; ++s) {
+      const StepResult r = pipeline.step(x0, x1);
+      EXPECT_EQ(contact_set_hash(r.contacts), expect) << tester << " step " << s;
+      EXPECT_EQ(r.counters.proximity_tested > 0, pays) << tester << " step " << s;
+    }
+  }
+  EXPECT_EQ(decisions.size(), 2u) << "the scene should make stage 4 pay for one tester and not the other";
+}
+
+TEST(OrphanCertificates, ABudgetLosesTheBlocksBendingNotItsTranslationNorAStepBackwards) {
+  // One block: a vertex and a face of a 3×3 grid, 0.5 apart in x; its budget as if it was measured at 0.4.
+  MeshData g = test::grid(3, 3);
+  TriMesh mesh(Index(g.positions.size()), g.faces);
+  OrphanSet set;
+  set.vf.push_back({0, mesh.num_faces() - 1});
+  OrphanCertificates cert(set, mesh);
+  ASSERT_EQ(cert.blocks(), 1u);
+  const Positions x0 = g.positions;
+  Positions x1 = x0;
+  for (Vec3& p : x1) p.z() += 0.01;
+  cert.begin_step(x0, x1, 0);
+  EXPECT_FALSE(cert.holds(0));  // the first step: nothing measured
+  cert.certify(0, 0.4f);
+  EXPECT_TRUE(cert.holds(0));
+  auto moved = [](Positions x, const Vec3& by, Index only = -1) {
+    for (std::size_t v = 0; v < x.size(); ++v)
+      if (only < 0 || Index(v) == only) x[v] += by;
+    return x;
+  };
+  cert.begin_step(moved(x0, {0.3, 0.2, 1}), moved(x1, {0.3, 0.2, 1}), 0);  // the whole mesh translated
+  EXPECT_TRUE(cert.holds(0));
+  cert.begin_step(moved(x1, {0.3, 0.2, 1}), moved(x0, {0.3, 0.2, 1}), 0);  // the same step backwards
+  EXPECT_TRUE(cert.holds(0));
+  cert.begin_step(moved(x1, {0.3, 0.2, 1}, 0), moved(x0, {0.3, 0.2, 1}), 0);  // vertex 0 alone moves by 0.1
+  EXPECT_FALSE(cert.holds(0));  // 0.4 − |(0.3, 0.2, 1)| < 0
+  cert.certify(0, 0.4f);
+  cert.begin_step(moved(x1, {0.3, 0.2, 1}, 0), moved(x0, {0.3, 0.2, 1}), 0);  // unmoved since
+  EXPECT_TRUE(cert.holds(0));
+  cert.begin_step(moved(x1, {0.3, 0.2, 1.3}, 0), moved(x0, {0.3, 0.2, 1}), 0);  // bent by 0.3: 0.1 left
+  EXPECT_TRUE(cert.holds(0));
+  cert.begin_step(moved(x1, {0.3, 0.2, 1.45}, 0), moved(x0, {0.3, 0.2, 1}), 0);  // 0.15 more: spent
+  EXPECT_FALSE(cert.holds(0));
+  cert.certify(0, 0.4f);
+  Positions nan = moved(x1, {0.3, 0.2, 1.45}, 0);
+  nan[5].x() = std::numeric_limits<double>::quiet_NaN();
+  cert.begin_step(nan, moved(x0, {0.3, 0.2, 1}), 0);  // a NaN anywhere: nothing holds
+  EXPECT_FALSE(cert.holds(0));
+  cert.certify(0, -0.1f);  // a block with an overlapping pair never holds
+  cert.begin_step(moved(x1, {0.3, 0.2, 1.45}, 0), moved(x0, {0.3, 0.2, 1}), 0);
+  EXPECT_FALSE(cert.holds(0));
+}
+
+TEST(NarrowModes, OrphanBlocksThatBarelyMovedAreSkippedWithTheSameContacts) {
+  // A crumpled sheet that barely moves for a few steps, then one vertex passes through its neighbours (contacts
+  // among the orphans) and back: the orphan loop skips blocks from the second step on, except where
+  // the vertex moved, and reports the contacts of the scalar mode (which tests every orphan) at every step.
+  MeshData g = test::grid(24, 24);
+  TriMesh mesh(Index(g.positions.size()), g.faces);
+  std::mt19937 rng(8);
+  std::vector<Positions> frames{test::crumple(g.positions, rng, 0.004)};
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int s = 0; s < 6; ++s) {
+    frames.push_back(frames.back());
+    for (Vec3& p : frames.back()) p += 1e-4 * Vec3(u(rng), u(rng), u(rng));
+  }
+  frames[3][312] += Vec3(0, 0, 0.1);                           // lifted, then
+  frames[4][312] = frames[3][312] + Vec3(0.08, 0.0, -0.11);      // through the sheet beside it, then back
+  const NarrowOptions never_carry{NarrowMode::batched, RepresentativeRule::fixed, OrphanCarry::never};
+  CcdPipeline batched(mesh, single_cloth_body(mesh), strategies("float", never_carry, 18, 2));
+  CcdPipeline scalar(mesh, single_cloth_body(mesh), strategies("float", {NarrowMode::scalar, RepresentativeRule::fixed, OrphanCarry::never}, 18, 1));
+  const std::size_t orphans = batched.orphans().vf.size() + batched.orphans().ee.size();
+  for (std::size_t s = 0; s + 1 < frames.size(); ++s) {
+    const StepResult a = batched.step(frames[s], frames[s + 1]), b = scalar.step(frames[s], frames[s + 1]);
+    EXPECT_EQ(contact_set_hash(a.contacts), contact_set_hash(b.contacts)) << "step " << s;
+    EXPECT_EQ(a.counters.orphans_unmoved + a.counters.orphan_vf + a.counters.orphan_ee, orphans) << "step " << s;
+    if (s == 0) EXPECT_EQ(a.counters.orphans_unmoved, 0u);
+    else EXPECT_GT(a.counters.orphans_unmoved, orphans / 2) << "step " << s;
+    if (s == 3) {  // contacts among the orphans: the blocks that moved were tested
+      const OrphanSet& o = batched.orphans();
+      std::size_t among_orphans = 0;
+      for (const Contact& c : a.contacts)
+        among_orphans += c.kind == ContactKind::vf
+                             ? std::count(o.vf.begin(), o.vf.end(), VertexFacePair{c.feature_a, c.feature_b})
+                             : std::count(o.ee.begin(), o.ee.end(), EdgeEdgePair{c.feature_a, c.feature_b});
+      EXPECT_GT(among_orphans, 0u);
+    }
   }
 }
 

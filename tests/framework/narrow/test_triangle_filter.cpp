@@ -226,6 +226,7 @@ NarrowCounters counters(const StepCounts& s) {
   c.triangle_tested = s.tested, c.triangle_fine = s.fine, c.triangle_culled = s.culled;
   c.vf_pairs = s.vf_pairs, c.ee_pairs = s.ee_pairs;
   c.kdop_culled = s.kdop, c.plane_culled = s.plane, c.split_culled = s.split, c.proximity_culled = s.proximity;
+  c.proximity_tested = s.vf_pairs + s.ee_pairs - s.kdop - s.plane - s.split;
   c.ee_tests = s.tests;
   return c;
 }
