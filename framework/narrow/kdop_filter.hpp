@@ -65,16 +65,16 @@ namespace ccdlab {
 /// tests above, float (vf_keep, ee_keep) or coarse (the _coarse ones).
 void vf_keep(const FeatureBounds& bounds, const TriMesh& mesh, std::span<const VertexFacePair> pairs, std::uint8_t* keep);
 void ee_keep(const FeatureBounds& bounds, const TriMesh& mesh, std::span<const EdgeEdgePair> pairs, std::uint8_t* keep);
-/// vf_keep / ee_keep, and the smallest over the pairs of each pair's largest separation along a unit direction
-/// of the 26-DOP (positive: every pair is apart by at least about that much; +inf for no pairs). Rounded to
-/// nearest twice: a caller that needs a bound takes off a relative 10⁻⁶ (OrphanCertificates).
-float vf_keep_gap(const FeatureBounds& bounds, const TriMesh& mesh, std::span<const VertexFacePair> pairs,
-                  std::uint8_t* keep);
-float ee_keep_gap(const FeatureBounds& bounds, const TriMesh& mesh, std::span<const EdgeEdgePair> pairs,
-                  std::uint8_t* keep);
 void vf_keep_coarse(const FeatureBounds& bounds, const TriMesh& mesh, std::span<const VertexFacePair> pairs,
                     std::uint8_t* keep);
 void ee_keep_coarse(const FeatureBounds& bounds, const TriMesh& mesh, std::span<const EdgeEdgePair> pairs,
                     std::uint8_t* keep);
+/// The coarse tests, and the smallest over the pairs of each pair's largest separation on an axis, in grid steps
+/// (≤ 0: some pair overlaps; 32767 without pairs or where it saturates). Times FeatureBounds::coarse_step() less
+/// two steps, a distance every pair keeps at least (OrphanCertificates).
+int vf_keep_coarse_gap(const FeatureBounds& bounds, const TriMesh& mesh, std::span<const VertexFacePair> pairs,
+                       std::uint8_t* keep);
+int ee_keep_coarse_gap(const FeatureBounds& bounds, const TriMesh& mesh, std::span<const EdgeEdgePair> pairs,
+                       std::uint8_t* keep);
 
 }  // namespace ccdlab

@@ -143,6 +143,7 @@ void NarrowPhase::end_step(const NarrowCounters& step) {
     proximity_rule_.record(step, tester_.relative_test_cost());
   }
   last_candidates_ = step.candidates_gathered + step.triangle_culled;
+  if (certify_orphans_) certificates_.record(step.orphans_unmoved, reps_.orphans().vf.size() + reps_.orphans().ee.size());
   ++steps_;
 }
 
@@ -170,7 +171,10 @@ void NarrowPhase::gather(std::span<const FacePair> candidates, NarrowScratch& sc
 }
 
 void NarrowPhase::begin_orphans(const Positions& x_t0, const Positions& x_t1) {
-  if (options_.mode == NarrowMode::batched) certificates_.begin_step(x_t0, x_t1, tester_.thickness());
+  // Only steps whose orphan loop tests the whole set can use them (gather_orphans), and only where they pay.
+  certify_orphans_ = options_.mode == NarrowMode::batched && !carry_orphans_ && certificates_.pay(steps_);
+  if (certify_orphans_) certificates_.begin_step(x_t0, x_t1, tester_.thickness());
+  else certificates_.forget();
 }
 
 void NarrowPhase::gather_orphans(std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters& c) const {
@@ -189,14 +193,31 @@ void NarrowPhase::gather_orphans(std::size_t b, std::size_t e, FeatureBatch& bat
     return;
   }
   const auto t = Clock::now();
-  const bool certified = !carry_orphans_;  // the loop tests the whole set, which the certificates cover
+  if (!certify_orphans_) {  // stage 1's coarse test, in pieces whose flags stay in L1
+    constexpr std::size_t kPiece = 1024;
+    std::uint8_t keep[kPiece];
+    for (std::size_t s = b; s < e; s += kPiece) {
+      const auto pv = vf(s, std::min(e, s + kPiece));
+      const auto pe = ee(s, std::min(e, s + kPiece));
+      vf_keep_coarse(*bounds_, mesh_, pv, keep);
+      append_kept(pv, keep, batch.vf);
+      ee_keep_coarse(*bounds_, mesh_, pe, keep);
+      append_kept(pe, keep, batch.ee);
+    }
+    c.vf_pairs += vf(b, e).size();
+    c.ee_pairs += ee(b, e).size();
+    c.kdop_culled += e - b - batch.vf.size() - batch.ee.size();
+    c.kdop_ns += ns_since(t);
+    batch.coarse_done = true;
+    return;
+  }
   constexpr std::size_t kBlock = OrphanCertificates::kBlock;
   std::uint8_t keep[kBlock];  // flags on the stack, in L1
   std::uint64_t gathered = 0;
   for (std::size_t s = b; s < e;) {
     const std::size_t k = OrphanCertificates::block_of(s), block_end = std::min((k + 1) * kBlock, n),
                       piece_end = std::min(e, block_end);
-    const bool whole = certified && s == k * kBlock && piece_end == block_end;
+    const bool whole = s == k * kBlock && piece_end == block_end;
     if (whole && certificates_.holds(k)) {
       c.orphans_unmoved += piece_end - s;
       s = piece_end;
@@ -204,11 +225,11 @@ void NarrowPhase::gather_orphans(std::size_t b, std::size_t e, FeatureBatch& bat
     }
     const auto pv = vf(s, piece_end);
     const auto pe = ee(s, piece_end);
-    float gap = vf_keep_gap(*bounds_, mesh_, pv, keep);
+    int steps = vf_keep_coarse_gap(*bounds_, mesh_, pv, keep);
     append_kept(pv, keep, batch.vf);
-    gap = std::min(gap, ee_keep_gap(*bounds_, mesh_, pe, keep));
+    steps = std::min(steps, ee_keep_coarse_gap(*bounds_, mesh_, pe, keep));
     append_kept(pe, keep, batch.ee);
-    if (whole) certificates_.certify(k, gap);
+    if (whole) certificates_.certify(k, double(steps - 2) * bounds_->coarse_step());
     c.vf_pairs += pv.size();
     c.ee_pairs += pe.size();
     gathered += pv.size() + pe.size();

@@ -121,7 +121,7 @@ class NarrowPhase {
   /// last step (orphan_certificates.hpp).
   void begin_orphans(const Positions& x_t0, const Positions& x_t1);
   /// Appends the pairs [b, e) of orphans_to_test() (VF first, then EE) to an empty `batch`. Batched mode skips
-  /// the blocks whose certificate holds (orphan_certificates.hpp), runs stage 1's float test on the others where
+  /// the blocks whose certificate holds (orphan_certificates.hpp), runs stage 1's coarse test on the others where
   /// the set lies, measuring their gaps, and copies only the pairs it keeps, counting them as run() would.
   void gather_orphans(std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters& c) const;
   /// Culls and tests the pairs of `batch` (consumed: it holds the survivors afterwards); appends contacts.
@@ -166,6 +166,7 @@ class NarrowPhase {
   bool proximity_stage_ = true;       ///< stage 4 runs in this step (begin_step)
   ProximityStageRule proximity_rule_;
   bool carry_orphans_ = false;        ///< the candidates carry the orphans in this step (begin_step)
+  bool certify_orphans_ = false;      ///< … or the orphan loop tests them all, by their certificates
   std::uint64_t last_candidates_ = 0;  ///< the candidates of the last step
   std::uint64_t steps_ = 0;
 };

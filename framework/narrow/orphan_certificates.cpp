@@ -29,7 +29,8 @@ OrphanCertificates::OrphanCertificates(const OrphanSet& orphans, const TriMesh& 
 void OrphanCertificates::begin_step(const Positions& x_t0, const Positions& x_t1, double thickness) {
   if (range_.empty()) return;
   const std::size_t n = x_t0.size();
-  if (last_t0_.size() != n || last_t1_.size() != n || x_t1.size() != n) {  // the first step: nothing measured
+  could_skip_ = last_t0_.size() == n && last_t1_.size() == n && x_t1.size() == n;
+  if (!could_skip_) {  // the first step: nothing measured
     std::fill(budget_.begin(), budget_.end(), -HUGE_VAL);
   } else {
     // Each vertex's swept 26-DOP bounds the set of its two positions, in either order: δ pairs this step's ends

@@ -5,8 +5,9 @@
 // surface around them has moved enough to matter.
 //
 // The orphan set (VF pairs, then EE pairs) is cut into blocks of kBlock pairs. When a block is tested, stage 1's
-// float test also measures each pair's largest separation along a unit axis of the 26-DOP (kdop_filter.hpp,
-// vf_keep_gap); the smallest over the block is its budget (≤ 0 when some pair overlaps). Every later step takes
+// coarse test also measures each pair's largest separation on an axis of the 26-DOP, k grid steps, which the
+// features keep at least as (k − 2)·coarse_step() along its unit direction (kdop_filter.hpp, feature_bounds.hpp);
+// the smallest over the block is its budget (≤ 0 when some pair overlaps). Every later step takes
 // off the budget how far the block's vertices can have moved relative to one another since the step before:
 // with δ_v = the change of vertex v's position at the step's start and at its end (two vectors per vertex), a
 // support of a feature's swept 26-DOP along a unit direction u moves by at most max u·δ over its vertices, so a
@@ -21,6 +22,7 @@
 // consecutive ids) through a table of power-of-two runs of buckets: O(1) per block. Meshes numbered in a
 // spatially coherent order (grids, scans, most generators) give tight ranges; a scattered numbering only
 // makes the boxes larger and the skips rarer, never wrong.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -37,9 +39,21 @@ class OrphanCertificates {
  public:
   static constexpr std::size_t kBlock = 64;    ///< pairs per block (the orphan loop's chunks hold whole blocks)
   static constexpr std::size_t kBucket = 64;   ///< vertex ids per bucket of the motion boxes
-  static constexpr float kRounding = 1e-6f;    ///< relative: the two roundings of a measured gap (vf_keep_gap)
   static constexpr double kMargin = 1e-4;      ///< relative to the largest coordinate plus the thickness: the float
                                                ///< 26-DOPs' own rounding, with room to spare
+
+  // When a step uses them (NarrowPhase): measuring and the motion pass cost a little more than the plain coarse
+  // test, which they save only where the mesh bends little (a twisting rod spends every budget at once). They
+  // are used in the steps 0 and 1 of every kRemeasure (to measure, then to see what they skip), and in the
+  // others while the last step that could skip skipped at least kPays of the set. Counted, as the stage rules.
+  static constexpr std::uint64_t kRemeasure = 16;
+  static constexpr double kPays = 0.5;
+  [[nodiscard]] bool pay(std::uint64_t step) const { return step % kRemeasure < 2 || skipped_share_ >= kPays; }
+  /// A step that used them: how many of `pairs` orphans it skipped (counted only when it could skip: the step
+  /// before used them too).
+  void record(std::uint64_t skipped, std::uint64_t pairs) {
+    if (could_skip_ && pairs > 0) skipped_share_ = double(skipped) / double(pairs);
+  }
 
   OrphanCertificates() = default;
   /// Blocks of `orphans` (VF first, then EE) with the vertex ids each reads; every budget starts spent.
@@ -52,11 +66,17 @@ class OrphanCertificates {
   /// Once per step, before the orphan loop: takes the motion since the last step's frames off every budget, then
   /// keeps these frames. `thickness`: the tester's (the 26-DOPs are inflated by half of it).
   void begin_step(const Positions& x_t0, const Positions& x_t1, double thickness);
+  /// A step whose orphan loop does not use the certificates: they lapse, and the step after measures afresh.
+  void forget() {
+    could_skip_ = false;
+    last_t0_.clear(), last_t1_.clear();
+    std::fill(budget_.begin(), budget_.end(), -HUGE_VAL);
+  }
   /// Whether every pair of block k is still apart (stage 1 would cull each one): the block may be skipped.
   [[nodiscard]] bool holds(std::size_t k) const { return budget_[k] > margin_; }
-  /// Block k was tested in this step and its pairs' smallest measured gap was `gap` (vf_keep_gap). Written only
-  /// by the one chunk of the orphan loop that holds the block.
-  void certify(std::size_t k, float gap) const { budget_[k] = double(gap) - double(kRounding) * std::abs(double(gap)); }
+  /// Block k was tested in this step and every pair of it keeps a distance of at least `gap` along some unit
+  /// axis (≤ 0: not every pair). Written only by the one chunk of the orphan loop that holds the block.
+  void certify(std::size_t k, double gap) const { budget_[k] = gap; }
 
  private:
   struct Range {
@@ -70,6 +90,8 @@ class OrphanCertificates {
   std::vector<Range> range_;
   mutable std::vector<double> budget_;  // see certify()
   double margin_ = 0;
+  bool could_skip_ = false;     ///< this step has budgets from the last one (begin_step)
+  double skipped_share_ = 1;   ///< of the set, in the last step that could skip
   Positions last_t0_, last_t1_;         ///< the last step's frames (empty before the first)
   std::vector<std::vector<Box>> runs_;  ///< runs_[j][b]: the δ box of buckets [b, b + 2^j)
 };

@@ -45,6 +45,12 @@ void FeatureBounds::update_coarse(const AxisRange& range, int threads, PhaseTrac
     scale[i] = usable ? float(CoarseDop::kSteps / extent) : 0.0f;
     offset[i] = float(CoarseDop::kOffset);
   }
+  coarse_step_ = HUGE_VAL;
+  for (int i = 0; i < PaddedDop::kAxes; ++i) {
+    const auto& d = KDop<26>::axes[std::size_t(i)];
+    if (scale[i] > 0) coarse_step_ = std::min(coarse_step_, 1 / (double(scale[i]) * std::sqrt(double(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]))));
+  }
+  if (coarse_step_ == HUGE_VAL) coarse_step_ = 0;
   coarse_.resize(vertex_.size());
   parallel_chunks(vertex_.size(), kChunk, threads, trace, [&](std::size_t b, std::size_t e, int) {
     detail::quantize_dops(vertex_.data() + b, coarse_.data() + b, e - b, lo, scale, offset);

@@ -139,6 +139,10 @@ class FeatureBounds {
   /// Every vertex's float 26-DOP and its coarse copy, indexed by vertex id (the narrow phase's stage 1 reads them).
   [[nodiscard]] const PaddedDop* dops() const { return vertex_.data(); }
   [[nodiscard]] const CoarseDop* coarse_dops() const { return coarse_.data(); }
+  /// What a step of the coarse grid is worth in distance, at least, on every axis: bounds k > 2 steps apart on
+  /// an axis are at least (k − 2)·coarse_step() apart along its unit direction (the floor takes up to one step,
+  /// the float rounding of q a few hundredths). 0 when no axis has a usable range.
+  [[nodiscard]] double coarse_step() const { return coarse_step_; }
 
   static constexpr std::size_t kBytesPerVertex = sizeof(PaddedDop) + sizeof(CoarseDop) + sizeof(FramePoints);
   [[nodiscard]] std::size_t memory_bytes() const { return vertex_.size() * kBytesPerVertex; }
@@ -162,6 +166,7 @@ class FeatureBounds {
   UninitializedVector<CoarseDop> coarse_;
   UninitializedVector<FramePoints> points_;
   double extent_ = 0;
+  double coarse_step_ = 0;
 };
 
 /// The swept k-DOP of face f over the step: the union of its vertices' swept 26-DOPs, inflated by half the

@@ -456,14 +456,16 @@ TEST(FeatureBounds, SimdKeepAgreesWithThePlainVersionOnEveryTarget) {
     ee_keep_coarse(bounds, mesh, pairs.ee, keep_coarse.data() + nvf);
     EXPECT_EQ(keep, expect) << target;
     EXPECT_EQ(keep_coarse, expect_coarse) << target;
-    // The measuring version keeps the same pairs, and each pair's gap is its largest separation on a unit axis.
+    // The measuring version keeps the same pairs; each pair's gap is its largest separation sum on the grid, and
+    // (gap − 2) grid steps are a distance its float 26-DOPs keep along that axis's unit direction.
     std::vector<std::uint8_t> keep_gap(expect.size());
-    EXPECT_EQ(vf_keep_gap(bounds, mesh, std::span(pairs.vf).first(0), keep_gap.data()), HUGE_VALF);
+    EXPECT_EQ(vf_keep_coarse_gap(bounds, mesh, std::span(pairs.vf).first(0), keep_gap.data()), 32767);
+    std::size_t measured = 0;
     for (std::size_t i = 0; i < expect.size(); i += 7) {
       const bool vf = i < nvf;
-      const float gap = vf ? vf_keep_gap(bounds, mesh, std::span(pairs.vf).subspan(i, 1), keep_gap.data() + i)
-                           : ee_keep_gap(bounds, mesh, std::span(pairs.ee).subspan(i - nvf, 1), keep_gap.data() + i);
-      EXPECT_EQ(keep_gap[i], expect[i]) << target << " pair " << i;
+      const int gap = vf ? vf_keep_coarse_gap(bounds, mesh, std::span(pairs.vf).subspan(i, 1), keep_gap.data() + i)
+                         : ee_keep_coarse_gap(bounds, mesh, std::span(pairs.ee).subspan(i - nvf, 1), keep_gap.data() + i);
+      EXPECT_EQ(keep_gap[i], expect_coarse[i]) << target << " pair " << i;
       std::array<Index, 4> u{}, w{};  // the vertices of each side
       std::size_t nu = 0, nw = 0;
       if (vf) {
@@ -473,17 +475,31 @@ TEST(FeatureBounds, SimdKeepAgreesWithThePlainVersionOnEveryTarget) {
         for (Index v : mesh.edge(pairs.ee[i - nvf].a)) u[nu++] = v;
         for (Index v : mesh.edge(pairs.ee[i - nvf].b)) w[nw++] = v;
       }
-      double largest = 0;
+      int sums = 0;  // padding lanes: 0
+      double distance = 0;
       for (int k = 0; k < PaddedDop::kAxes; ++k) {
-        double umin = HUGE_VAL, umax = -HUGE_VAL, wmin = HUGE_VAL, wmax = -HUGE_VAL;
-        for (std::size_t j = 0; j < nu; ++j) umin = std::min<double>(umin, bounds.dops()[u[j]].min[k]), umax = std::max<double>(umax, bounds.dops()[u[j]].max[k]);
-        for (std::size_t j = 0; j < nw; ++j) wmin = std::min<double>(wmin, bounds.dops()[w[j]].min[k]), wmax = std::max<double>(wmax, bounds.dops()[w[j]].max[k]);
+        int umin = 32767, uneg = 32767, wmin = 32767, wneg = 32767;
+        double fu_min = HUGE_VAL, fu_max = -HUGE_VAL, fw_min = HUGE_VAL, fw_max = -HUGE_VAL;
+        for (std::size_t j = 0; j < nu; ++j) {
+          const CoarseDop& c = bounds.coarse_dops()[u[j]];
+          umin = std::min<int>(umin, c.min[k]), uneg = std::min<int>(uneg, c.neg_max[k]);
+          fu_min = std::min<double>(fu_min, bounds.dops()[u[j]].min[k]), fu_max = std::max<double>(fu_max, bounds.dops()[u[j]].max[k]);
+        }
+        for (std::size_t j = 0; j < nw; ++j) {
+          const CoarseDop& c = bounds.coarse_dops()[w[j]];
+          wmin = std::min<int>(wmin, c.min[k]), wneg = std::min<int>(wneg, c.neg_max[k]);
+          fw_min = std::min<double>(fw_min, bounds.dops()[w[j]].min[k]), fw_max = std::max<double>(fw_max, bounds.dops()[w[j]].max[k]);
+        }
+        sums = std::max({sums, std::clamp(umin + wneg, -32768, 32767), std::clamp(wmin + uneg, -32768, 32767)});
         const auto& axis = KDop<26>::axes[std::size_t(k)];
-        largest = std::max(largest, std::max(umin - wmax, wmin - umax) / std::sqrt(double(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2])));
+        distance = std::max(distance, std::max(fu_min - fw_max, fw_min - fu_max) /
+                                          std::sqrt(double(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2])));
       }
-      EXPECT_NEAR(gap, largest, 1e-6 * std::abs(largest) + 1e-12) << target << " pair " << i;
-      EXPECT_EQ(gap > 0, !expect[i]) << target << " pair " << i;
+      EXPECT_EQ(gap, sums) << target << " pair " << i;
+      EXPECT_LE((gap - 2) * bounds.coarse_step(), distance) << target << " pair " << i;
+      measured += gap > 2;
     }
+    EXPECT_GT(measured, 100u);
     if (first_coarse.empty()) first_coarse = keep_coarse;
     EXPECT_EQ(keep_coarse, first_coarse) << target << ": the quantizers of two targets disagree";
   });
