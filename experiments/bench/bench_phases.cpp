@@ -213,6 +213,43 @@ void BM_FloatTesterSurvivors(benchmark::State& state) {
 }
 BENCHMARK(BM_FloatTesterSurvivors)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
+// `float`'s batched kernel on hits and on misses apart: every query's features cross each other's plane
+// (a root to refine), inside the other feature (a hit: the distance at the root, barycentrics, the record's
+// coordinates) or beside it (a miss). Args: 0 VF, 1 EE; 0 hits, 1 misses. ns per query = the time / 4096;
+// CCDLAB_SIMD picks the target (docs/narrow-phase.md, "SIMD: Google Highway").
+void BM_FloatTesterHitsMisses(benchmark::State& state) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const bool edges = state.range(0) == 1, hit = state.range(1) == 0;
+  const double beside = hit ? 0.0 : 3.0;  // how far the crossing lies from the other feature
+  const auto wobble = [&](const Vec3& p) { return Vec3(p + 0.02 * Vec3(u(rng), u(rng), u(rng))); };
+  constexpr std::size_t kQueries = 4096;
+  std::vector<VertexFaceQuery> vf(kQueries);
+  std::vector<EdgeEdgeQuery> ee(kQueries);
+  for (std::size_t i = 0; i < kQueries; ++i) {
+    const Vec3 a(-1 + 0.1 * u(rng), -1 + 0.1 * u(rng), 0.02 * u(rng)), b(1 + 0.1 * u(rng), -1 + 0.1 * u(rng), 0.02 * u(rng)),
+        c(0.1 * u(rng), 1 + 0.1 * u(rng), 0.02 * u(rng));
+    const Vec3 v(beside + 0.2 * u(rng), 0.2 * u(rng), 1);
+    vf[i] = {v, a, b, c, wobble(v - Vec3(0, 0, 2)), wobble(a), wobble(b), wobble(c)};
+    const Vec3 e0(-1, 0.3 * u(rng), 1), e1(1, 0.3 * u(rng), 1), f0(beside + 0.2 * u(rng), -1, 0.02 * u(rng)),
+        f1(beside + 0.2 * u(rng), 1, 0.02 * u(rng));
+    ee[i] = {e0, e1, f0, f1, wobble(e0 - Vec3(0, 0, 2)), wobble(e1 - Vec3(0, 0, 2)), wobble(f0), wobble(f1)};
+  }
+  const FloatTester t;
+  std::vector<CcdHit> hits(kQueries);
+  for (auto _ : state) {
+    if (edges) t.edge_edges(ee, hits.data());
+    else t.vertex_faces(vf, hits.data());
+    benchmark::DoNotOptimize(hits.data());
+  }
+  std::size_t n_hit = 0;
+  for (const CcdHit& h : hits) n_hit += h.hit;
+  state.SetLabel(std::string(edges ? "EE" : "VF") + (hit ? " hits" : " misses"));
+  state.counters["hit_rate"] = double(n_hit) / double(kQueries);
+  state.SetItemsProcessed(std::int64_t(state.iterations() * kQueries));
+}
+BENCHMARK(BM_FloatTesterHitsMisses)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond);
+
 // The accuracy ladder on random edge–edge queries (mostly separated: the filters' case) and on every built-in
 // hard case (degenerate: the expensive paths). Arg: 0 float, 1 filtered, 2 conservative, 3 exact.
 const char* const kTesters[] = {"float", "filtered", "conservative", "exact"};
