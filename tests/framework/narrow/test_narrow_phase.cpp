@@ -756,6 +756,18 @@ TEST(NarrowModes, StageFourRunsWhereItPaysAndTheContactsStayTheSame) {
   EXPECT_EQ(decisions.size(), 2u) << "the scene should make stage 4 pay for one tester and not the other";
 }
 
+/// `count` frames of grid `g`: crumpled (0.004), then each vertex jittered by up to `jitter` a step.
+std::vector<Positions> drifting_sheet(const MeshData& g, unsigned seed, int count, double jitter) {
+  std::mt19937 rng(seed);
+  std::vector<Positions> frames{test::crumple(g.positions, rng, 0.004)};
+  std::uniform_real_distribution<double> u(-1, 1);
+  while (int(frames.size()) < count) {
+    frames.push_back(frames.back());
+    for (Vec3& p : frames.back()) p += jitter * Vec3(u(rng), u(rng), u(rng));
+  }
+  return frames;
+}
+
 TEST(OrphanCertificates, ABudgetLosesTheBlocksBendingNotItsTranslationNorAStepBackwards) {
   // One block: a vertex and a face of a 3×3 grid, 0.5 apart in x; its budget as if it was measured at 0.4.
   MeshData g = test::grid(3, 3);
@@ -805,13 +817,7 @@ TEST(NarrowModes, OrphanBlocksThatBarelyMovedAreSkippedWithTheSameContacts) {
   // the vertex moved, and reports the contacts of the scalar mode (which tests every orphan) at every step.
   MeshData g = test::grid(24, 24);
   TriMesh mesh(Index(g.positions.size()), g.faces);
-  std::mt19937 rng(8);
-  std::vector<Positions> frames{test::crumple(g.positions, rng, 0.004)};
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (int s = 0; s < 6; ++s) {
-    frames.push_back(frames.back());
-    for (Vec3& p : frames.back()) p += 1e-4 * Vec3(u(rng), u(rng), u(rng));
-  }
+  std::vector<Positions> frames = drifting_sheet(g, 8, 7, 1e-4);
   frames[3][312] += Vec3(0, 0, 0.1);                           // lifted, then
   frames[4][312] = frames[3][312] + Vec3(0.08, 0.0, -0.11);      // through the sheet beside it, then back
   const NarrowOptions never_carry{NarrowMode::batched, RepresentativeRule::fixed, OrphanCarry::never};
@@ -841,13 +847,7 @@ TEST(NarrowModes, TheCandidatesCarryTheOrphansInTheStepsWhereFewCandidatesAreGat
   // the second step on the candidates carry the orphans, with the contacts of a pipeline that never lets them.
   MeshData g = test::grid(24, 24);
   TriMesh mesh(Index(g.positions.size()), g.faces);
-  std::mt19937 rng(4);
-  std::vector<Positions> frames{test::crumple(g.positions, rng, 0.004)};
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (int s = 0; s < 3; ++s) {
-    frames.push_back(frames.back());
-    for (Vec3& p : frames.back()) p += 0.004 * Vec3(u(rng), u(rng), u(rng));
-  }
+  std::vector<Positions> frames = drifting_sheet(g, 4, 4, 0.004);
   frames[2][300] = frames[1][300] + Vec3(0, 0, 0.3);  // a vertex jumps through its neighbours: contacts among orphans
   CcdPipeline carrying(mesh, single_cloth_body(mesh), strategies("float", {}, 18, 2));
   CcdPipeline never(mesh, single_cloth_body(mesh), strategies("float", {NarrowMode::batched, RepresentativeRule::fixed, OrphanCarry::never}, 18, 2));
