@@ -177,7 +177,8 @@ void NarrowPhase::begin_orphans(const Positions& x_t0, const Positions& x_t1) {
   else certificates_.forget();
 }
 
-void NarrowPhase::gather_orphans(std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters& c) const {
+void NarrowPhase::gather_orphans(std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters& c,
+                                 bool cull) const {
   const OrphanSet& orphans = orphans_to_test();
   const std::size_t nvf = orphans.vf.size(), n = nvf + orphans.ee.size();
   e = std::min(e, n);
@@ -187,7 +188,7 @@ void NarrowPhase::gather_orphans(std::size_t b, std::size_t e, FeatureBatch& bat
   const auto ee = [&](std::size_t lo, std::size_t hi) {
     return std::span(orphans.ee).subspan(std::max(lo, nvf) - nvf, std::max(hi, nvf) - std::max(lo, nvf));
   };
-  if (options_.mode == NarrowMode::scalar) {  // stage 1 runs pair by pair in run()
+  if (options_.mode == NarrowMode::scalar || !cull) {  // stage 1 runs pair by pair in run(), or not at all
     batch.vf.insert(batch.vf.end(), vf(b, e).begin(), vf(b, e).end());
     batch.ee.insert(batch.ee.end(), ee(b, e).begin(), ee(b, e).end());
     return;

@@ -123,7 +123,8 @@ class NarrowPhase {
   /// Appends the pairs [b, e) of orphans_to_test() (VF first, then EE) to an empty `batch`. Batched mode skips
   /// the blocks whose certificate holds (orphan_certificates.hpp), runs stage 1's coarse test on the others where
   /// the set lies, measuring their gaps, and copies only the pairs it keeps, counting them as run() would.
-  void gather_orphans(std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters& c) const;
+  /// `cull = false` copies them all (tests that record every pair gathered).
+  void gather_orphans(std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters& c, bool cull = true) const;
   /// Culls and tests the pairs of `batch` (consumed: it holds the survivors afterwards); appends contacts.
   /// `cull = false` skips the culling stages (brute-force references).
   void run(NarrowScratch& scratch, Contacts& out, NarrowCounters& c, bool cull = true) const;

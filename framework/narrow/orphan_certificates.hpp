@@ -55,7 +55,6 @@ class OrphanCertificates {
     if (could_skip_ && pairs > 0) skipped_share_ = double(skipped) / double(pairs);
   }
 
-  OrphanCertificates() = default;
   /// Blocks of `orphans` (VF first, then EE) with the vertex ids each reads; every budget starts spent.
   OrphanCertificates(const OrphanSet& orphans, const TriMesh& mesh);
 

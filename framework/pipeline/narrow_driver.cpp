@@ -118,12 +118,7 @@ void NarrowDriver::test_orphans(const std::vector<Index>* face_patch, StepResult
   const std::size_t nvf = orphans.vf.size(), n = nvf + orphans.ee.size();
   in_parallel(n, kOrphanChunk, "orphans", &result.timings.orphan_ms, result, [&](std::size_t b, std::size_t e, NarrowScratch& scratch, NarrowCounters& lc) {
     FeatureBatch& batch = scratch.batch;
-    if (!face_patch && !record_tested_) return narrow_.gather_orphans(b, e, batch, lc);
-    if (!face_patch) {  // every orphan is recorded as gathered: copy them whole
-      batch.vf.insert(batch.vf.end(), orphans.vf.begin() + std::ptrdiff_t(std::min(b, nvf)), orphans.vf.begin() + std::ptrdiff_t(std::min(e, nvf)));
-      batch.ee.insert(batch.ee.end(), orphans.ee.begin() + std::ptrdiff_t(std::max(b, nvf) - nvf), orphans.ee.begin() + std::ptrdiff_t(std::max(e, nvf) - nvf));
-      return;
-    }
+    if (!face_patch) return narrow_.gather_orphans(b, e, batch, lc, !record_tested_);  // recorded: all of them
     for (std::size_t i = b; i < std::min(e, nvf); ++i) {
       const VertexFacePair& p = orphans.vf[i];
       if (same_skipped_patch(reps.face_of_vertex(p.v), p.f)) ++lc.orphans_culled;
