@@ -233,6 +233,124 @@ void FirstCoplanarRoots(const double* columns, std::size_t stride, std::size_t n
   }
 }
 
+template <class V>
+HWY_INLINE Xyz<V> Minus(const Xyz<V>& a, const Xyz<V>& b) { return {hn::Sub(a.x, b.x), hn::Sub(a.y, b.y), hn::Sub(a.z, b.z)}; }
+/// a + s·b, Eigen's `a + s * b`.
+template <class V>
+HWY_INLINE Xyz<V> PlusScaled(const Xyz<V>& a, V s, const Xyz<V>& b) {
+  return {hn::Add(a.x, hn::Mul(s, b.x)), hn::Add(a.y, hn::Mul(s, b.y)), hn::Add(a.z, hn::Mul(s, b.z))};
+}
+/// std::clamp(x, 0, 1).
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V Clamp01(D d, V x) {
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  return hn::IfThenElse(hn::Lt(x, zero), zero, hn::IfThenElse(hn::Lt(one, x), one, x));
+}
+
+/// One vector of rows' four points at their time, and what the verdicts need.
+template <class D, class V = hn::Vec<D>>
+struct PointsAt {
+  Xyz<V> p[4];
+  V reach;
+  HWY_INLINE PointsAt(D d, const double* columns, std::size_t stride, std::size_t i) {
+    const auto col = [&](int k) { return hn::LoadU(d, columns + stride * std::size_t(k) + i); };
+    const V t = col(PointColumns::t);
+    for (int k = 0; k < 4; ++k) {
+      const int c = PointColumns::P0x + 6 * k;
+      p[k] = MovingV<V>{{col(c), col(c + 1), col(c + 2)}, {col(c + 3), col(c + 4), col(c + 5)}}.at(t);
+    }
+    reach = col(PointColumns::reach);
+  }
+};
+
+/// Writes the verdicts and coordinates of rows [i, min(i + lanes, n)).
+template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
+HWY_INLINE void StoreAt(D d, M scalar, V distance_sq, V reach, V u, V v, std::size_t i, std::size_t n, AtTime* verdict,
+                        double* coords) {
+  const M hit = hn::AndNot(scalar, hn::Le(distance_sq, hn::Mul(reach, reach)));
+  HWY_ALIGN double k[HWY_MAX_BYTES / sizeof(double)], us[HWY_MAX_BYTES / sizeof(double)], vs[HWY_MAX_BYTES / sizeof(double)];
+  hn::Store(hn::IfThenElse(scalar, hn::Set(d, 2.0), hn::IfThenElseZero(hit, hn::Set(d, 1.0))), d, k);
+  hn::Store(u, d, us), hn::Store(v, d, vs);
+  for (std::size_t j = 0; j < hn::Lanes(d) && i + j < n; ++j) {
+    verdict[i + j] = AtTime(int(k[j]));
+    coords[2 * (i + j)] = us[j], coords[2 * (i + j) + 1] = vs[j];
+  }
+}
+
+/// closest_point_triangle (distance.cpp), every Voronoi region of the triangle (Ericson 5.1.5) computed and the
+/// first that holds, in the scalar code's order, taken per lane.
+void VertexFacesAt(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords) {
+  using D = hn::ScalableTag<double>;
+  using V = hn::Vec<D>;
+  const D d;
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  for (std::size_t i = 0; i < n; i += hn::Lanes(d)) {
+    const PointsAt<D> r(d, columns, stride, i);
+    const Xyz<V>&p = r.p[0], &a = r.p[1], &b = r.p[2], &c = r.p[3];
+    const Xyz<V> ab = Minus(b, a), ac = Minus(c, a), bc = Minus(c, b);
+    const Xyz<V> nrm = Cross(ab, ac);
+    const V scale = hn::Max(hn::Max(Dot(ab, ab), Dot(ac, ac)), Dot(bc, bc));
+    auto scalar = hn::Le(Dot(nrm, nrm), hn::Mul(hn::Mul(hn::Set(d, 1e-24), scale), scale));
+    scalar = hn::Or(scalar, hn::Not(hn::IsFinite(scale)));  // std::max's NaN order is not Max's
+    const Xyz<V> ap = Minus(p, a), bp = Minus(p, b), cp = Minus(p, c);
+    const V d1 = Dot(ab, ap), d2 = Dot(ac, ap), d3 = Dot(ab, bp), d4 = Dot(ac, bp), d5 = Dot(ab, cp), d6 = Dot(ac, cp);
+    const V vc = hn::Sub(hn::Mul(d1, d4), hn::Mul(d3, d2)), vb = hn::Sub(hn::Mul(d5, d2), hn::Mul(d1, d6)),
+            va = hn::Sub(hn::Mul(d3, d6), hn::Mul(d5, d4));
+    // The face's interior, then each region above it in reverse order, so that the first that holds wins.
+    const V denom = hn::Div(one, hn::Add(hn::Add(va, vb), vc));
+    V u = hn::Mul(vb, denom), v = hn::Mul(vc, denom);
+    V dist = [&] { const Xyz<V> q = Minus(p, PlusScaled(PlusScaled(a, u, ab), v, ac)); return Dot(q, q); }();
+    const auto take = [&](auto holds, V dist_k, V u_k, V v_k) {
+      dist = hn::IfThenElse(holds, dist_k, dist), u = hn::IfThenElse(holds, u_k, u), v = hn::IfThenElse(holds, v_k, v);
+    };
+    const V d43 = hn::Sub(d4, d3), d56 = hn::Sub(d5, d6);
+    {  // edge bc
+      const V w = hn::Div(d43, hn::Add(d43, d56));
+      const Xyz<V> q = Minus(p, PlusScaled(b, w, bc));
+      take(hn::And(hn::Le(va, zero), hn::And(hn::Ge(d43, zero), hn::Ge(d56, zero))), Dot(q, q), hn::Sub(one, w), w);
+    }
+    {  // edge ac
+      const V w = hn::Div(d2, hn::Sub(d2, d6));
+      const Xyz<V> q = Minus(p, PlusScaled(a, w, ac));
+      take(hn::And(hn::Le(vb, zero), hn::And(hn::Ge(d2, zero), hn::Le(d6, zero))), Dot(q, q), zero, w);
+    }
+    take(hn::And(hn::Ge(d6, zero), hn::Le(d5, d6)), Dot(cp, cp), zero, one);  // vertex c
+    {  // edge ab
+      const V w = hn::Div(d1, hn::Sub(d1, d3));
+      const Xyz<V> q = Minus(p, PlusScaled(a, w, ab));
+      take(hn::And(hn::Le(vc, zero), hn::And(hn::Ge(d1, zero), hn::Le(d3, zero))), Dot(q, q), w, zero);
+    }
+    take(hn::And(hn::Ge(d3, zero), hn::Le(d4, d3)), Dot(bp, bp), one, zero);  // vertex b
+    take(hn::And(hn::Le(d1, zero), hn::Le(d2, zero)), Dot(ap, ap), zero, zero);  // vertex a
+    StoreAt(d, scalar, dist, r.reach, u, v, i, n, verdict, coords);
+  }
+}
+
+/// closest_segment_segment (distance.cpp) where both segments have length and are not parallel; the rest
+/// (its other branches) is left to it.
+void EdgeEdgesAt(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords) {
+  using D = hn::ScalableTag<double>;
+  using V = hn::Vec<D>;
+  const D d;
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  for (std::size_t i = 0; i < n; i += hn::Lanes(d)) {
+    const PointsAt<D> r(d, columns, stride, i);
+    const Xyz<V>&p0 = r.p[0], &p1 = r.p[1], &q0 = r.p[2], &q1 = r.p[3];
+    const Xyz<V> d1 = Minus(p1, p0), d2 = Minus(q1, q0), rr = Minus(p0, q0);
+    const V a = Dot(d1, d1), e = Dot(d2, d2), f = Dot(d2, rr), c = Dot(d1, rr), b = Dot(d1, d2);
+    const V denom = hn::Sub(hn::Mul(a, e), hn::Mul(b, b));
+    const auto scalar = hn::Or(hn::Or(hn::Eq(a, zero), hn::Eq(e, zero)),
+                               hn::Not(hn::Gt(denom, hn::Mul(hn::Mul(hn::Set(d, 1e-14), a), e))));
+    V s = Clamp01(d, hn::Div(hn::Sub(hn::Mul(b, f), hn::Mul(c, e)), denom));
+    V t = hn::Div(hn::Add(hn::Mul(b, s), f), e);
+    const auto below = hn::Lt(t, zero), above = hn::AndNot(below, hn::Gt(t, one));
+    s = hn::IfThenElse(below, Clamp01(d, hn::Div(hn::Neg(c), a)), hn::IfThenElse(above, Clamp01(d, hn::Div(hn::Sub(b, c), a)), s));
+    t = hn::IfThenElse(below, zero, hn::IfThenElse(above, one, t));
+    const Xyz<V> q = Minus(PlusScaled(p0, s, d1), PlusScaled(q0, t, d2));
+    StoreAt(d, scalar, Dot(q, q), r.reach, s, t, i, n, verdict, coords);
+  }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace ccdlab
 HWY_AFTER_NAMESPACE();
@@ -246,6 +364,17 @@ void first_coplanar_roots(const double* columns, std::size_t stride, std::size_t
                           FirstRoot* kind, double* t, std::uint8_t* more) {
   if (n == 0) return;
   HWY_DYNAMIC_DISPATCH(FirstCoplanarRoots)(columns, stride, n, rel_tolerance, kind, t, more);
+}
+
+HWY_EXPORT(VertexFacesAt);
+HWY_EXPORT(EdgeEdgesAt);
+
+void vertex_faces_at(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords) {
+  if (n > 0) HWY_DYNAMIC_DISPATCH(VertexFacesAt)(columns, stride, n, verdict, coords);
+}
+
+void edge_edges_at(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords) {
+  if (n > 0) HWY_DYNAMIC_DISPATCH(EdgeEdgesAt)(columns, stride, n, verdict, coords);
 }
 
 }  // namespace ccdlab

@@ -1,5 +1,6 @@
 #pragma once
-// The `float` tester's root search for many queries at once (SIMD, Highway with run-time dispatch).
+// The `float` tester's root search for many queries at once, and the distance check at the roots it finds
+// (SIMD, Highway with run-time dispatch).
 //
 // FloatTester (float_tester.hpp) looks for the earliest root in [0, 1] of the coplanarity cubic
 // f(t) = A(t)·(B(t)×C(t)): the coefficients, the Bernstein early out, the breakpoints (roots of f′), f at each,
@@ -39,5 +40,25 @@ struct CubicColumns {
 /// be readable up to a multiple of 8 rows past n (the padding's answers are written and meaningless).
 void first_coplanar_roots(const double* columns, std::size_t stride, std::size_t n, double rel_tolerance,
                           FirstRoot* kind, double* t, std::uint8_t* more);
+
+/// The proximity check at one time per row, for a block: the query's four points P0…P3 moving linearly
+/// (Pk(t) = Pk + t·dPk, relative to one origin as the scalar tester's), the time t and the reach. VF: P0 is the
+/// vertex, P1–P3 the face (closest_point_triangle); EE: P0P1 against P2P3 (closest_segment_segment).
+struct PointColumns {
+  enum : int {
+    P0x, P0y, P0z, dP0x, dP0y, dP0z, P1x, P1y, P1z, dP1x, dP1y, dP1z,
+    P2x, P2y, P2z, dP2x, dP2y, dP2z, P3x, P3y, P3z, dP3x, dP3y, dP3z, t, reach, count
+  };
+};
+
+/// A row's answer at its time: within reach (`hit`, with the contact's coordinates), not (`miss`), or a case the
+/// kernel leaves to the scalar function (a degenerate triangle, a point-like or parallel edge, a NaN).
+enum class AtTime : std::uint8_t { miss, hit, scalar };
+
+/// verdict[i] and, on a hit, coords[2i], coords[2i + 1] (CcdHit::coords) for rows [0, n): the scalar functions'
+/// distance and coordinates bit for bit (same operations, same order, no fused multiply-adds), compared as
+/// `distance² ≤ reach²`. Columns readable up to a multiple of 8 rows past n, as above.
+void vertex_faces_at(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords);
+void edge_edges_at(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords);
 
 }  // namespace ccdlab

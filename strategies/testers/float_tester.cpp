@@ -184,6 +184,11 @@ struct VfMotion {
     m.A = m.v - m.f0, m.B = m.f1 - m.f0, m.C = m.f2 - m.f0;
     return m;
   }
+  /// The points `hit` measures, in the order of the batched check (float_roots.hpp, PointColumns).
+  [[nodiscard]] std::array<const Moving*, 4> points() const { return {&v, &f0, &f1, &f2}; }
+  static void hits_at(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords) {
+    vertex_faces_at(columns, stride, n, verdict, coords);
+  }
   /// Whether the vertex is within `reach` of the face at t; sets `out` when it is.
   bool hit(double t, double reach, CcdHit& out) const {
     auto c = closest_point_triangle(v.at(t), f0.at(t), f1.at(t), f2.at(t));
@@ -213,6 +218,10 @@ struct EeMotion {
     m.a0 = moving(p, 0, q.ea0_t0), m.a1 = moving(p, 1, q.ea0_t0), m.b0 = moving(p, 2, q.ea0_t0), m.b1 = moving(p, 3, q.ea0_t0);
     m.A = m.b0 - m.a0, m.B = m.a1 - m.a0, m.C = m.b1 - m.b0;
     return m;
+  }
+  [[nodiscard]] std::array<const Moving*, 4> points() const { return {&a0, &a1, &b0, &b1}; }
+  static void hits_at(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords) {
+    edge_edges_at(columns, stride, n, verdict, coords);
   }
   bool hit(double t, double reach, CcdHit& out) const {
     auto c = closest_segment_segment(a0.at(t), a1.at(t), b0.at(t), b1.at(t));
@@ -244,9 +253,9 @@ CcdHit solve(const Motion& m, double thickness) {
   return out;
 }
 
-/// Many queries: the root search of a block in SIMD (float_roots.hpp), then per query the distance at the root it
-/// found, or the whole scalar test where the kernel cannot decide or later candidates follow a miss. The same
-/// answers as `solve`, bit for bit.
+/// Many queries: the root search of a block in SIMD (float_roots.hpp), then the distance at the root it found, in
+/// SIMD too (`Motion::hit` for the rows that kernel leaves), and the whole scalar test where the root search
+/// cannot decide or later candidates follow a miss. The same answers as `solve`, bit for bit.
 template <class Motion, class Query>
 void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) {
   if (thickness > 0) {  // the ends of the step are candidates too: the kernel does not cover it
@@ -254,32 +263,51 @@ void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) 
     return;
   }
   constexpr std::size_t kBlock = 64, kStride = kBlock + 8;  // + 8: whole vectors past a short block's end
-  alignas(64) double columns[CubicColumns::count * kStride];
+  alignas(64) double cubic[CubicColumns::count * kStride];
+  alignas(64) double points[PointColumns::count * kStride];
   std::array<Motion, kBlock> motion;
   std::array<FirstRoot, kBlock> kind;
   std::array<double, kBlock> root;
   std::array<std::uint8_t, kBlock> more;
+  std::array<AtTime, kBlock> at_root;
+  std::array<double, 2 * kBlock> coords;
   for (std::size_t b = 0; b < queries.size(); b += kBlock) {
     const std::size_t n = std::min(kBlock, queries.size() - b);
     for (std::size_t i = 0; i < n; ++i) {
       const Motion& m = motion[i] = Motion::of(queries[b + i]);
-      const auto put = [&](int column, const Vec3& p) {
+      const auto put = [&](double* columns, int column, const Vec3& p) {
         for (int axis = 0; axis < 3; ++axis) columns[kStride * std::size_t(column + axis) + i] = p[axis];
       };
-      put(CubicColumns::A0x, m.A.x0), put(CubicColumns::dAx, m.A.dx);
-      put(CubicColumns::B0x, m.B.x0), put(CubicColumns::dBx, m.B.dx);
-      put(CubicColumns::C0x, m.C.x0), put(CubicColumns::dCx, m.C.dx);
-      columns[kStride * CubicColumns::f_scale + i] = m.L * m.L * m.L;
+      put(cubic, CubicColumns::A0x, m.A.x0), put(cubic, CubicColumns::dAx, m.A.dx);
+      put(cubic, CubicColumns::B0x, m.B.x0), put(cubic, CubicColumns::dBx, m.B.dx);
+      put(cubic, CubicColumns::C0x, m.C.x0), put(cubic, CubicColumns::dCx, m.C.dx);
+      cubic[kStride * CubicColumns::f_scale + i] = m.L * m.L * m.L;
+      const auto moving = m.points();
+      for (int k = 0; k < 4; ++k)
+        put(points, PointColumns::P0x + 6 * k, moving[k]->x0), put(points, PointColumns::dP0x + 6 * k, moving[k]->dx);
+      points[kStride * PointColumns::reach + i] = thickness + FloatTester::rel_tolerance * m.L;
     }
-    for (int column = 0; column < CubicColumns::count; ++column)
-      std::fill(columns + kStride * std::size_t(column) + n, columns + kStride * std::size_t(column + 1), 0.0);
-    first_coplanar_roots(columns, kStride, n, FloatTester::rel_tolerance, kind.data(), root.data(), more.data());
+    const auto pad = [&](double* columns, int count) {
+      for (int column = 0; column < count; ++column)
+        std::fill(columns + kStride * std::size_t(column) + n, columns + kStride * std::size_t(column + 1), 0.0);
+    };
+    pad(cubic, CubicColumns::count);
+    first_coplanar_roots(cubic, kStride, n, FloatTester::rel_tolerance, kind.data(), root.data(), more.data());
+    std::copy_n(root.data(), n, points + kStride * PointColumns::t);
+    pad(points, PointColumns::count);
+    Motion::hits_at(points, kStride, n, at_root.data(), coords.data());
     for (std::size_t i = 0; i < n; ++i) {
       CcdHit& h = out[b + i];
       h = CcdHit{};
       if (kind[i] == FirstRoot::none) continue;
       const Motion& m = motion[i];
-      if (kind[i] == FirstRoot::root && m.hit(root[i], thickness + FloatTester::rel_tolerance * m.L, h)) continue;
+      if (kind[i] == FirstRoot::root) {
+        if (at_root[i] == AtTime::hit) {
+          h = {true, root[i], {coords[2 * i], coords[2 * i + 1]}};
+          continue;
+        }
+        if (at_root[i] == AtTime::scalar && m.hit(root[i], thickness + FloatTester::rel_tolerance * m.L, h)) continue;
+      }
       if (kind[i] == FirstRoot::scalar || more[i]) h = solve(m, thickness);
     }
   }

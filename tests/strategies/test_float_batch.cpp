@@ -2,9 +2,11 @@
 // time of contact, coordinates) on every SIMD target: on random near contacts at every scale, on exact-integer
 // queries whose cubics have roots and touching points at breakpoints, on the built-in hard cases and on the
 // shared query sets (skipped where ../shared/data is absent). The kernel's three answers are all exercised;
-// `filtered`, which hands what its filter leaves to the batch, answers as its scalar self.
+// `filtered`, which hands what its filter leaves to the batch, answers as its scalar self. The distance check at
+// the roots equals closest_point_triangle and closest_segment_segment in every region they distinguish.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -13,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "framework/geometry/distance.hpp"
 #include "framework/queries/hard_cases.hpp"
 #include "framework/queries/query_set.hpp"
 #include "strategies/testers/filtered_tester.hpp"
@@ -63,6 +66,13 @@ RandomQueries random_queries(int n, unsigned seed) {
     r.ee.push_back({p[1], p[2], p[0], p[3], p[5], p[6], p[4], p[7]});
   }
   return r;
+}
+
+/// Point k of row i of PointColumns at time t, as the kernel computes it (x0 + t·dx).
+Vec3 columns_point(const std::vector<double>& columns, std::size_t stride, std::size_t i, int k, double t) {
+  const auto at = [&](int column) { return columns[stride * std::size_t(column) + i]; };
+  const int c = PointColumns::P0x + 6 * k;
+  return Vec3(at(c), at(c + 1), at(c + 2)) + t * Vec3(at(c + 3), at(c + 4), at(c + 5));
 }
 
 template <class Query>
@@ -174,6 +184,81 @@ TEST(FloatBatch, KernelAnswersEveryKind) {
     EXPECT_GT(count[int(FirstRoot::scalar)], 20) << target;
     EXPECT_GT(with_more, 20) << target;
   });
+}
+
+/// Rows of four moving points and a time, at scales 1e-4 … 1e2: every region of the point–triangle distance and
+/// every clamp of the segment–segment one, plus degenerate triangles and parallel or point-like edges (which the
+/// kernel must leave to the scalar functions). Half the reaches are the scalar distance itself, where a
+/// last-bit difference in the kernel's distance flips the verdict.
+TEST(FloatBatch, DistanceAtRootsGivesTheClosestFunctionsBitForBit) {
+  constexpr std::size_t n = 4000, kStride = n + 8;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1), scale(-4, 2), unit(0, 1);
+  std::vector<double> columns(PointColumns::count * kStride, 0.0);
+  std::vector<std::array<Vec3, 4>> at(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double s = std::pow(10.0, scale(rng)), t = i % 5 == 0 ? double(i % 2) : unit(rng);
+    std::array<Vec3, 4> x0, dx;
+    for (int k = 0; k < 4; ++k) x0[k] = s * Vec3(u(rng), u(rng), u(rng)), dx[k] = s * Vec3(u(rng), u(rng), u(rng));
+    if (i % 13 == 0) x0[3] = 2.0 * x0[2] - x0[1], dx[3] = 2.0 * dx[2] - dx[1];  // a collinear triangle P1 P2 P3
+    else if (i % 17 == 0) x0[1] = x0[0], dx[1] = dx[0];                           // a point-like edge P0 P1
+    else if (i % 19 == 0) x0[3] = x0[2] + 0.5 * (x0[1] - x0[0]), dx[3] = dx[2] + 0.5 * (dx[1] - dx[0]);  // parallel edges
+    for (int k = 0; k < 4; ++k)
+      for (int axis = 0; axis < 3; ++axis) {
+        columns[kStride * std::size_t(PointColumns::P0x + 6 * k + axis) + i] = x0[k][axis];
+        columns[kStride * std::size_t(PointColumns::dP0x + 6 * k + axis) + i] = dx[k][axis];
+      }
+    columns[kStride * PointColumns::t + i] = t;
+    for (int k = 0; k < 4; ++k) at[i][k] = columns_point(columns, kStride, i, k, t);
+  }
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  for (const bool vf : {true, false}) {
+    std::vector<double> dist(n);
+    std::vector<std::array<double, 2>> coords(n);
+    std::vector<bool> special(n);
+    std::array<int, 8> regions{};
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& p = at[i];
+      if (vf) {
+        const PointTriangleClosest c = closest_point_triangle(p[0], p[1], p[2], p[3]);
+        dist[i] = c.distance_sq, coords[i] = {c.bary[1], c.bary[2]};
+        special[i] = i % 13 == 0;
+        // The region by which barycentric weights are zero or one: 7 kinds, one of them the interior.
+        const int zeros = (c.bary[0] == 0) + (c.bary[1] == 0) + (c.bary[2] == 0);
+        ++regions[zeros == 2 ? 0 : zeros == 1 ? 1 : 2];
+      } else {
+        const SegmentSegmentClosest c = closest_segment_segment(p[0], p[1], p[2], p[3]);
+        dist[i] = c.distance_sq, coords[i] = {c.s, c.t};
+        special[i] = i % 13 != 0 && (i % 17 == 0 || i % 19 == 0);
+        ++regions[3 + (c.s == 0 || c.s == 1) + 2 * (c.t == 0 || c.t == 1)];
+      }
+      columns[kStride * PointColumns::reach + i] = i % 2 ? std::sqrt(dist[i]) : std::sqrt(dist[i]) * (0.5 + unit(rng));
+    }
+    test::for_each_simd_target([&](const char* target) {
+      std::vector<AtTime> verdict(n);
+      std::vector<double> out(2 * n);
+      if (vf) vertex_faces_at(columns.data(), kStride, n, verdict.data(), out.data());
+      else edge_edges_at(columns.data(), kStride, n, verdict.data(), out.data());
+      std::array<int, 3> count{};
+      int differ = 0, special_decided = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        ++count[int(verdict[i])];
+        if (verdict[i] == AtTime::scalar) continue;
+        special_decided += special[i];
+        const double reach = columns[kStride * PointColumns::reach + i];
+        const bool hit = dist[i] <= reach * reach;
+        if ((verdict[i] == AtTime::hit) != hit || bits(out[2 * i]) != bits(coords[i][0]) || bits(out[2 * i + 1]) != bits(coords[i][1]))
+          if (differ++ < 5) ADD_FAILURE() << target << (vf ? " VF" : " EE") << " row " << i;
+      }
+      EXPECT_EQ(differ, 0) << target;
+      EXPECT_EQ(special_decided, 0) << target << (vf ? " VF" : " EE") << ": a degenerate row decided in SIMD";
+      EXPECT_GT(count[int(AtTime::hit)], 500) << target;
+      EXPECT_GT(count[int(AtTime::miss)], 500) << target;
+    });
+    EXPECT_GT(std::count(special.begin(), special.end(), true), 250);
+    // The rows reach every kind of closest point: vertex, edge, interior (VF); each clamp (EE).
+    for (int r = vf ? 0 : 3; r < (vf ? 3 : 7); ++r) EXPECT_GT(regions[r], 100) << (vf ? "VF" : "EE") << " region " << r;
+  }
 }
 
 }  // namespace
