@@ -263,92 +263,111 @@ struct PointsAt {
   }
 };
 
-/// Writes the verdicts and coordinates of rows [i, min(i + lanes, n)).
+/// One vector of rows' closest points: squared distance, coordinates (CcdHit::coords) and the lanes left to the
+/// scalar function.
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
-HWY_INLINE void StoreAt(D d, M scalar, V distance_sq, V reach, V u, V v, std::size_t i, std::size_t n, AtTime* verdict,
-                        double* coords) {
-  const M hit = hn::AndNot(scalar, hn::Le(distance_sq, hn::Mul(reach, reach)));
-  HWY_ALIGN double k[HWY_MAX_BYTES / sizeof(double)], us[HWY_MAX_BYTES / sizeof(double)], vs[HWY_MAX_BYTES / sizeof(double)];
-  hn::Store(hn::IfThenElse(scalar, hn::Set(d, 2.0), hn::IfThenElseZero(hit, hn::Set(d, 1.0))), d, k);
-  hn::Store(u, d, us), hn::Store(v, d, vs);
-  for (std::size_t j = 0; j < hn::Lanes(d) && i + j < n; ++j) {
-    verdict[i + j] = AtTime(int(k[j]));
-    coords[2 * (i + j)] = us[j], coords[2 * (i + j) + 1] = vs[j];
+struct ClosestAt {
+  M scalar;
+  V distance_sq, u, v;
+};
+
+/// closest_point_triangle (distance.cpp) of p[0] and the triangle p[1] p[2] p[3]: every Voronoi region of the
+/// triangle (Ericson 5.1.5) computed and the first that holds, in the scalar code's order, taken per lane.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE ClosestAt<D> PointTriangle(D d, const Xyz<V> (&pts)[4]) {
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  const Xyz<V>&p = pts[0], &a = pts[1], &b = pts[2], &c = pts[3];
+  const Xyz<V> ab = Minus(b, a), ac = Minus(c, a), bc = Minus(c, b);
+  const Xyz<V> nrm = Cross(ab, ac);
+  const V scale = hn::Max(hn::Max(Dot(ab, ab), Dot(ac, ac)), Dot(bc, bc));
+  ClosestAt<D> out;
+  out.scalar = hn::Le(Dot(nrm, nrm), hn::Mul(hn::Mul(hn::Set(d, 1e-24), scale), scale));  // degenerate triangle
+  out.scalar = hn::Or(out.scalar, hn::Not(hn::IsFinite(scale)));  // std::max's NaN order is not Max's
+  const Xyz<V> ap = Minus(p, a), bp = Minus(p, b), cp = Minus(p, c);
+  const V d1 = Dot(ab, ap), d2 = Dot(ac, ap), d3 = Dot(ab, bp), d4 = Dot(ac, bp), d5 = Dot(ab, cp), d6 = Dot(ac, cp);
+  const V vc = hn::Sub(hn::Mul(d1, d4), hn::Mul(d3, d2)), vb = hn::Sub(hn::Mul(d5, d2), hn::Mul(d1, d6)),
+          va = hn::Sub(hn::Mul(d3, d6), hn::Mul(d5, d4));
+  // The face's interior, then each region above it in reverse order, so that the first that holds wins.
+  const V denom = hn::Div(one, hn::Add(hn::Add(va, vb), vc));
+  V& u = out.u;
+  V& v = out.v;
+  V& dist = out.distance_sq;
+  u = hn::Mul(vb, denom), v = hn::Mul(vc, denom);
+  dist = [&] { const Xyz<V> q = Minus(p, PlusScaled(PlusScaled(a, u, ab), v, ac)); return Dot(q, q); }();
+  const auto take = [&](auto holds, V dist_k, V u_k, V v_k) {
+    dist = hn::IfThenElse(holds, dist_k, dist), u = hn::IfThenElse(holds, u_k, u), v = hn::IfThenElse(holds, v_k, v);
+  };
+  const V d43 = hn::Sub(d4, d3), d56 = hn::Sub(d5, d6);
+  {  // edge bc
+    const V w = hn::Div(d43, hn::Add(d43, d56));
+    const Xyz<V> q = Minus(p, PlusScaled(b, w, bc));
+    take(hn::And(hn::Le(va, zero), hn::And(hn::Ge(d43, zero), hn::Ge(d56, zero))), Dot(q, q), hn::Sub(one, w), w);
+  }
+  {  // edge ac
+    const V w = hn::Div(d2, hn::Sub(d2, d6));
+    const Xyz<V> q = Minus(p, PlusScaled(a, w, ac));
+    take(hn::And(hn::Le(vb, zero), hn::And(hn::Ge(d2, zero), hn::Le(d6, zero))), Dot(q, q), zero, w);
+  }
+  take(hn::And(hn::Ge(d6, zero), hn::Le(d5, d6)), Dot(cp, cp), zero, one);  // vertex c
+  {  // edge ab
+    const V w = hn::Div(d1, hn::Sub(d1, d3));
+    const Xyz<V> q = Minus(p, PlusScaled(a, w, ab));
+    take(hn::And(hn::Le(vc, zero), hn::And(hn::Ge(d1, zero), hn::Le(d3, zero))), Dot(q, q), w, zero);
+  }
+  take(hn::And(hn::Ge(d3, zero), hn::Le(d4, d3)), Dot(bp, bp), one, zero);  // vertex b
+  take(hn::And(hn::Le(d1, zero), hn::Le(d2, zero)), Dot(ap, ap), zero, zero);  // vertex a
+  return out;
+}
+
+/// closest_segment_segment (distance.cpp) of p[0] p[1] and p[2] p[3] where both segments have length and are not
+/// parallel; its other branches are left to it.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE ClosestAt<D> SegmentSegment(D d, const Xyz<V> (&pts)[4]) {
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  const Xyz<V>&p0 = pts[0], &p1 = pts[1], &q0 = pts[2], &q1 = pts[3];
+  const Xyz<V> d1 = Minus(p1, p0), d2 = Minus(q1, q0), rr = Minus(p0, q0);
+  const V a = Dot(d1, d1), e = Dot(d2, d2), f = Dot(d2, rr), c = Dot(d1, rr), b = Dot(d1, d2);
+  const V denom = hn::Sub(hn::Mul(a, e), hn::Mul(b, b));
+  ClosestAt<D> out;
+  out.scalar = hn::Or(hn::Or(hn::Eq(a, zero), hn::Eq(e, zero)),
+                      hn::Not(hn::Gt(denom, hn::Mul(hn::Mul(hn::Set(d, 1e-14), a), e))));
+  V s = Clamp01(d, hn::Div(hn::Sub(hn::Mul(b, f), hn::Mul(c, e)), denom));
+  V t = hn::Div(hn::Add(hn::Mul(b, s), f), e);
+  const auto below = hn::Lt(t, zero), above = hn::AndNot(below, hn::Gt(t, one));
+  s = hn::IfThenElse(below, Clamp01(d, hn::Div(hn::Neg(c), a)), hn::IfThenElse(above, Clamp01(d, hn::Div(hn::Sub(b, c), a)), s));
+  t = hn::IfThenElse(below, zero, hn::IfThenElse(above, one, t));
+  const Xyz<V> q = Minus(PlusScaled(p0, s, d1), PlusScaled(q0, t, d2));
+  out.distance_sq = Dot(q, q), out.u = s, out.v = t;
+  return out;
+}
+
+/// The verdicts and coordinates of rows [0, n): `closest` per vector of rows, compared with the reach.
+template <class Closest>
+HWY_INLINE void AtTimes(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords,
+                        Closest closest) {
+  using D = hn::ScalableTag<double>;
+  const D d;
+  const std::size_t N = hn::Lanes(d);
+  for (std::size_t i = 0; i < n; i += N) {
+    const PointsAt<D> r(d, columns, stride, i);
+    const ClosestAt<D> c = closest(d, r.p);
+    const auto hit = hn::AndNot(c.scalar, hn::Le(c.distance_sq, hn::Mul(r.reach, r.reach)));
+    HWY_ALIGN double k[HWY_MAX_BYTES / sizeof(double)], u[HWY_MAX_BYTES / sizeof(double)], v[HWY_MAX_BYTES / sizeof(double)];
+    hn::Store(hn::IfThenElse(c.scalar, hn::Set(d, 2.0), hn::IfThenElseZero(hit, hn::Set(d, 1.0))), d, k);
+    hn::Store(c.u, d, u), hn::Store(c.v, d, v);
+    for (std::size_t j = 0; j < N && i + j < n; ++j) {
+      verdict[i + j] = AtTime(int(k[j]));
+      coords[2 * (i + j)] = u[j], coords[2 * (i + j) + 1] = v[j];
+    }
   }
 }
 
-/// closest_point_triangle (distance.cpp), every Voronoi region of the triangle (Ericson 5.1.5) computed and the
-/// first that holds, in the scalar code's order, taken per lane.
 void VertexFacesAt(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords) {
-  using D = hn::ScalableTag<double>;
-  using V = hn::Vec<D>;
-  const D d;
-  const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
-  for (std::size_t i = 0; i < n; i += hn::Lanes(d)) {
-    const PointsAt<D> r(d, columns, stride, i);
-    const Xyz<V>&p = r.p[0], &a = r.p[1], &b = r.p[2], &c = r.p[3];
-    const Xyz<V> ab = Minus(b, a), ac = Minus(c, a), bc = Minus(c, b);
-    const Xyz<V> nrm = Cross(ab, ac);
-    const V scale = hn::Max(hn::Max(Dot(ab, ab), Dot(ac, ac)), Dot(bc, bc));
-    auto scalar = hn::Le(Dot(nrm, nrm), hn::Mul(hn::Mul(hn::Set(d, 1e-24), scale), scale));
-    scalar = hn::Or(scalar, hn::Not(hn::IsFinite(scale)));  // std::max's NaN order is not Max's
-    const Xyz<V> ap = Minus(p, a), bp = Minus(p, b), cp = Minus(p, c);
-    const V d1 = Dot(ab, ap), d2 = Dot(ac, ap), d3 = Dot(ab, bp), d4 = Dot(ac, bp), d5 = Dot(ab, cp), d6 = Dot(ac, cp);
-    const V vc = hn::Sub(hn::Mul(d1, d4), hn::Mul(d3, d2)), vb = hn::Sub(hn::Mul(d5, d2), hn::Mul(d1, d6)),
-            va = hn::Sub(hn::Mul(d3, d6), hn::Mul(d5, d4));
-    // The face's interior, then each region above it in reverse order, so that the first that holds wins.
-    const V denom = hn::Div(one, hn::Add(hn::Add(va, vb), vc));
-    V u = hn::Mul(vb, denom), v = hn::Mul(vc, denom);
-    V dist = [&] { const Xyz<V> q = Minus(p, PlusScaled(PlusScaled(a, u, ab), v, ac)); return Dot(q, q); }();
-    const auto take = [&](auto holds, V dist_k, V u_k, V v_k) {
-      dist = hn::IfThenElse(holds, dist_k, dist), u = hn::IfThenElse(holds, u_k, u), v = hn::IfThenElse(holds, v_k, v);
-    };
-    const V d43 = hn::Sub(d4, d3), d56 = hn::Sub(d5, d6);
-    {  // edge bc
-      const V w = hn::Div(d43, hn::Add(d43, d56));
-      const Xyz<V> q = Minus(p, PlusScaled(b, w, bc));
-      take(hn::And(hn::Le(va, zero), hn::And(hn::Ge(d43, zero), hn::Ge(d56, zero))), Dot(q, q), hn::Sub(one, w), w);
-    }
-    {  // edge ac
-      const V w = hn::Div(d2, hn::Sub(d2, d6));
-      const Xyz<V> q = Minus(p, PlusScaled(a, w, ac));
-      take(hn::And(hn::Le(vb, zero), hn::And(hn::Ge(d2, zero), hn::Le(d6, zero))), Dot(q, q), zero, w);
-    }
-    take(hn::And(hn::Ge(d6, zero), hn::Le(d5, d6)), Dot(cp, cp), zero, one);  // vertex c
-    {  // edge ab
-      const V w = hn::Div(d1, hn::Sub(d1, d3));
-      const Xyz<V> q = Minus(p, PlusScaled(a, w, ab));
-      take(hn::And(hn::Le(vc, zero), hn::And(hn::Ge(d1, zero), hn::Le(d3, zero))), Dot(q, q), w, zero);
-    }
-    take(hn::And(hn::Ge(d3, zero), hn::Le(d4, d3)), Dot(bp, bp), one, zero);  // vertex b
-    take(hn::And(hn::Le(d1, zero), hn::Le(d2, zero)), Dot(ap, ap), zero, zero);  // vertex a
-    StoreAt(d, scalar, dist, r.reach, u, v, i, n, verdict, coords);
-  }
+  AtTimes(columns, stride, n, verdict, coords, [](auto d, const auto& p) { return PointTriangle(d, p); });
 }
 
-/// closest_segment_segment (distance.cpp) where both segments have length and are not parallel; the rest
-/// (its other branches) is left to it.
 void EdgeEdgesAt(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords) {
-  using D = hn::ScalableTag<double>;
-  using V = hn::Vec<D>;
-  const D d;
-  const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
-  for (std::size_t i = 0; i < n; i += hn::Lanes(d)) {
-    const PointsAt<D> r(d, columns, stride, i);
-    const Xyz<V>&p0 = r.p[0], &p1 = r.p[1], &q0 = r.p[2], &q1 = r.p[3];
-    const Xyz<V> d1 = Minus(p1, p0), d2 = Minus(q1, q0), rr = Minus(p0, q0);
-    const V a = Dot(d1, d1), e = Dot(d2, d2), f = Dot(d2, rr), c = Dot(d1, rr), b = Dot(d1, d2);
-    const V denom = hn::Sub(hn::Mul(a, e), hn::Mul(b, b));
-    const auto scalar = hn::Or(hn::Or(hn::Eq(a, zero), hn::Eq(e, zero)),
-                               hn::Not(hn::Gt(denom, hn::Mul(hn::Mul(hn::Set(d, 1e-14), a), e))));
-    V s = Clamp01(d, hn::Div(hn::Sub(hn::Mul(b, f), hn::Mul(c, e)), denom));
-    V t = hn::Div(hn::Add(hn::Mul(b, s), f), e);
-    const auto below = hn::Lt(t, zero), above = hn::AndNot(below, hn::Gt(t, one));
-    s = hn::IfThenElse(below, Clamp01(d, hn::Div(hn::Neg(c), a)), hn::IfThenElse(above, Clamp01(d, hn::Div(hn::Sub(b, c), a)), s));
-    t = hn::IfThenElse(below, zero, hn::IfThenElse(above, one, t));
-    const Xyz<V> q = Minus(PlusScaled(p0, s, d1), PlusScaled(q0, t, d2));
-    StoreAt(d, scalar, Dot(q, q), r.reach, s, t, i, n, verdict, coords);
-  }
+  AtTimes(columns, stride, n, verdict, coords, [](auto d, const auto& p) { return SegmentSegment(d, p); });
 }
 
 }  // namespace HWY_NAMESPACE
