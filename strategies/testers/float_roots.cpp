@@ -362,6 +362,24 @@ HWY_INLINE void AtTimes(const double* columns, std::size_t stride, std::size_t n
   }
 }
 
+void CubicColumnsFromPoints(const double* points, std::size_t stride, std::size_t n, PointPairing pairing, double* cubic) {
+  using D = hn::ScalableTag<double>;
+  const D d;
+  // Each vector of the cubic: which point minus which (PointColumns' point numbers).
+  constexpr int kVf[3][2] = {{0, 1}, {2, 1}, {3, 1}}, kEe[3][2] = {{2, 0}, {1, 0}, {3, 2}};
+  const auto& from = pairing == PointPairing::vertex_face ? kVf : kEe;
+  for (std::size_t i = 0; i < n; i += hn::Lanes(d)) {
+    const auto col = [&](int k) { return hn::LoadU(d, points + stride * std::size_t(k) + i); };
+    const auto put = [&](int k, hn::Vec<D> v) { hn::StoreU(v, d, cubic + stride * std::size_t(k) + i); };
+    for (int vec = 0; vec < 3; ++vec)
+      for (int c = 0; c < 6; ++c)  // x0 then dx, each x y z
+        put(CubicColumns::A0x + 6 * vec + c,
+            hn::Sub(col(PointColumns::P0x + 6 * from[vec][0] + c), col(PointColumns::P0x + 6 * from[vec][1] + c)));
+    const auto L = col(PointColumns::extent);
+    put(CubicColumns::f_scale, hn::Mul(hn::Mul(L, L), L));
+  }
+}
+
 void VertexFacesAt(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords) {
   AtTimes(columns, stride, n, verdict, coords, [](auto d, const auto& p) { return PointTriangle(d, p); });
 }
@@ -385,8 +403,13 @@ void first_coplanar_roots(const double* columns, std::size_t stride, std::size_t
   HWY_DYNAMIC_DISPATCH(FirstCoplanarRoots)(columns, stride, n, rel_tolerance, kind, t, more);
 }
 
+HWY_EXPORT(CubicColumnsFromPoints);
 HWY_EXPORT(VertexFacesAt);
 HWY_EXPORT(EdgeEdgesAt);
+
+void cubic_columns(const double* points, std::size_t stride, std::size_t n, PointPairing pairing, double* cubic) {
+  if (n > 0) HWY_DYNAMIC_DISPATCH(CubicColumnsFromPoints)(points, stride, n, pairing, cubic);
+}
 
 void vertex_faces_at(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords) {
   if (n > 0) HWY_DYNAMIC_DISPATCH(VertexFacesAt)(columns, stride, n, verdict, coords);

@@ -47,9 +47,18 @@ void first_coplanar_roots(const double* columns, std::size_t stride, std::size_t
 struct PointColumns {
   enum : int {
     P0x, P0y, P0z, dP0x, dP0y, dP0z, P1x, P1y, P1z, dP1x, dP1y, dP1z,
-    P2x, P2y, P2z, dP2x, dP2y, dP2z, P3x, P3y, P3z, dP3x, dP3y, dP3z, t, reach, count
+    P2x, P2y, P2z, dP2x, dP2y, dP2z, P3x, P3y, P3z, dP3x, dP3y, dP3z, t, reach, extent, count
   };
 };
+
+/// Which features the four points are: the vertex then the face, or edge P0P1 then edge P2P3.
+enum class PointPairing : std::uint8_t { vertex_face, edge_edge };
+
+/// The cubic's columns (CubicColumns) of rows [0, n) from their points' (PointColumns, `extent` the query's L):
+/// VF A = P0 − P1, B = P2 − P1, C = P3 − P1; EE A = P2 − P0, B = P1 − P0, C = P3 − P2, position and motion
+/// apart, as FloatTester forms them; f_scale = L³. Both sets of columns have the same stride; readable and
+/// writable up to a multiple of 8 rows past n.
+void cubic_columns(const double* points, std::size_t stride, std::size_t n, PointPairing pairing, double* cubic);
 
 /// A row's answer at its time: within reach (`hit`, with the contact's coordinates), not (`miss`), or a case the
 /// kernel leaves to the scalar function (a degenerate triangle, a point-like or parallel edge, a NaN).

@@ -176,16 +176,22 @@ struct VfMotion {
   Moving v, f0, f1, f2, A, B, C;
   double L = 0;
 
+  /// The query's points in the order of the batched kernels (float_roots.hpp, PointColumns, PointPairing), and
+  /// the one the others are taken relative to.
+  static QueryPoints points(const VertexFaceQuery& q) {
+    return {&q.v_t0, &q.f0_t0, &q.f1_t0, &q.f2_t0, &q.v_t1, &q.f0_t1, &q.f1_t1, &q.f2_t1};
+  }
+  static constexpr int kOrigin = 1;
+  static constexpr PointPairing pairing = PointPairing::vertex_face;
+
   static VfMotion of(const VertexFaceQuery& q) {
     VfMotion m;
-    const QueryPoints p{&q.v_t0, &q.f0_t0, &q.f1_t0, &q.f2_t0, &q.v_t1, &q.f0_t1, &q.f1_t1, &q.f2_t1};
+    const QueryPoints p = points(q);
     m.L = extent(p);
-    m.v = moving(p, 0, q.f0_t0), m.f0 = moving(p, 1, q.f0_t0), m.f1 = moving(p, 2, q.f0_t0), m.f2 = moving(p, 3, q.f0_t0);
+    m.v = moving(p, 0, *p[kOrigin]), m.f0 = moving(p, 1, *p[kOrigin]), m.f1 = moving(p, 2, *p[kOrigin]), m.f2 = moving(p, 3, *p[kOrigin]);
     m.A = m.v - m.f0, m.B = m.f1 - m.f0, m.C = m.f2 - m.f0;
     return m;
   }
-  /// The points `hit` measures, in the order of the batched check (float_roots.hpp, PointColumns).
-  [[nodiscard]] std::array<const Moving*, 4> points() const { return {&v, &f0, &f1, &f2}; }
   static void hits_at(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords) {
     vertex_faces_at(columns, stride, n, verdict, coords);
   }
@@ -211,15 +217,20 @@ struct EeMotion {
   Moving a0, a1, b0, b1, A, B, C;
   double L = 0;
 
+  static QueryPoints points(const EdgeEdgeQuery& q) {
+    return {&q.ea0_t0, &q.ea1_t0, &q.eb0_t0, &q.eb1_t0, &q.ea0_t1, &q.ea1_t1, &q.eb0_t1, &q.eb1_t1};
+  }
+  static constexpr int kOrigin = 0;
+  static constexpr PointPairing pairing = PointPairing::edge_edge;
+
   static EeMotion of(const EdgeEdgeQuery& q) {
     EeMotion m;
-    const QueryPoints p{&q.ea0_t0, &q.ea1_t0, &q.eb0_t0, &q.eb1_t0, &q.ea0_t1, &q.ea1_t1, &q.eb0_t1, &q.eb1_t1};
+    const QueryPoints p = points(q);
     m.L = extent(p);
-    m.a0 = moving(p, 0, q.ea0_t0), m.a1 = moving(p, 1, q.ea0_t0), m.b0 = moving(p, 2, q.ea0_t0), m.b1 = moving(p, 3, q.ea0_t0);
+    m.a0 = moving(p, 0, *p[kOrigin]), m.a1 = moving(p, 1, *p[kOrigin]), m.b0 = moving(p, 2, *p[kOrigin]), m.b1 = moving(p, 3, *p[kOrigin]);
     m.A = m.b0 - m.a0, m.B = m.a1 - m.a0, m.C = m.b1 - m.b0;
     return m;
   }
-  [[nodiscard]] std::array<const Moving*, 4> points() const { return {&a0, &a1, &b0, &b1}; }
   static void hits_at(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords) {
     edge_edges_at(columns, stride, n, verdict, coords);
   }
@@ -255,7 +266,8 @@ CcdHit solve(const Motion& m, double thickness) {
 
 /// Many queries: the root search of a block in SIMD (float_roots.hpp), then the distance at the root it found, in
 /// SIMD too (`Motion::hit` for the rows that kernel leaves), and the whole scalar test where the root search
-/// cannot decide or later candidates follow a miss. The same answers as `solve`, bit for bit.
+/// cannot decide or later candidates follow a miss. The same answers as `solve`, bit for bit: the kernels' columns
+/// hold what `Motion::of` computes (the points relative to the origin, then A, B, C from them, L).
 template <class Motion, class Query>
 void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) {
   if (thickness > 0) {  // the ends of the step are candidates too: the kernel does not cover it
@@ -263,9 +275,8 @@ void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) 
     return;
   }
   constexpr std::size_t kBlock = 64, kStride = kBlock + 8;  // + 8: whole vectors past a short block's end
-  alignas(64) double cubic[CubicColumns::count * kStride];
   alignas(64) double points[PointColumns::count * kStride];
-  std::array<Motion, kBlock> motion;
+  alignas(64) double cubic[CubicColumns::count * kStride];
   std::array<FirstRoot, kBlock> kind;
   std::array<double, kBlock> root;
   std::array<std::uint8_t, kBlock> more;
@@ -274,40 +285,38 @@ void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) 
   for (std::size_t b = 0; b < queries.size(); b += kBlock) {
     const std::size_t n = std::min(kBlock, queries.size() - b);
     for (std::size_t i = 0; i < n; ++i) {
-      const Motion& m = motion[i] = Motion::of(queries[b + i]);
-      const auto put = [&](double* columns, int column, const Vec3& p) {
-        for (int axis = 0; axis < 3; ++axis) columns[kStride * std::size_t(column + axis) + i] = p[axis];
+      const QueryPoints p = Motion::points(queries[b + i]);
+      const Vec3& origin = *p[Motion::kOrigin];
+      const auto put = [&](int column, const Vec3& v) {
+        for (int axis = 0; axis < 3; ++axis) points[kStride * std::size_t(column + axis) + i] = v[axis];
       };
-      put(cubic, CubicColumns::A0x, m.A.x0), put(cubic, CubicColumns::dAx, m.A.dx);
-      put(cubic, CubicColumns::B0x, m.B.x0), put(cubic, CubicColumns::dBx, m.B.dx);
-      put(cubic, CubicColumns::C0x, m.C.x0), put(cubic, CubicColumns::dCx, m.C.dx);
-      cubic[kStride * CubicColumns::f_scale + i] = m.L * m.L * m.L;
-      const auto moving = m.points();
-      for (int k = 0; k < 4; ++k)
-        put(points, PointColumns::P0x + 6 * k, moving[k]->x0), put(points, PointColumns::dP0x + 6 * k, moving[k]->dx);
-      points[kStride * PointColumns::reach + i] = thickness + FloatTester::rel_tolerance * m.L;
+      for (int k = 0; k < 4; ++k) put(PointColumns::P0x + 6 * k, *p[k] - origin), put(PointColumns::dP0x + 6 * k, *p[k + 4] - *p[k]);
+      const double L = extent(p);
+      points[kStride * PointColumns::extent + i] = L;
+      points[kStride * PointColumns::reach + i] = thickness + FloatTester::rel_tolerance * L;
     }
-    const auto pad = [&](double* columns, int count) {
-      for (int column = 0; column < count; ++column)
-        std::fill(columns + kStride * std::size_t(column) + n, columns + kStride * std::size_t(column + 1), 0.0);
-    };
-    pad(cubic, CubicColumns::count);
+    for (int column = 0; column < PointColumns::count; ++column)
+      std::fill(points + kStride * std::size_t(column) + n, points + kStride * std::size_t(column + 1), 0.0);
+    cubic_columns(points, kStride, n, Motion::pairing, cubic);
     first_coplanar_roots(cubic, kStride, n, FloatTester::rel_tolerance, kind.data(), root.data(), more.data());
     std::copy_n(root.data(), n, points + kStride * PointColumns::t);
-    pad(points, PointColumns::count);
     Motion::hits_at(points, kStride, n, at_root.data(), coords.data());
     for (std::size_t i = 0; i < n; ++i) {
       CcdHit& h = out[b + i];
       h = CcdHit{};
       if (kind[i] == FirstRoot::none) continue;
-      const Motion& m = motion[i];
       if (kind[i] == FirstRoot::root) {
         if (at_root[i] == AtTime::hit) {
           h = {true, root[i], {coords[2 * i], coords[2 * i + 1]}};
           continue;
         }
-        if (at_root[i] == AtTime::scalar && m.hit(root[i], thickness + FloatTester::rel_tolerance * m.L, h)) continue;
+        if (at_root[i] == AtTime::miss && !more[i]) continue;
       }
+      // What the kernels leave: the distance at the root, later candidates after a miss, the whole test.
+      const Motion m = Motion::of(queries[b + i]);
+      if (kind[i] == FirstRoot::root && at_root[i] == AtTime::scalar &&
+          m.hit(root[i], thickness + FloatTester::rel_tolerance * m.L, h))
+        continue;
       if (kind[i] == FirstRoot::scalar || more[i]) h = solve(m, thickness);
     }
   }
