@@ -94,12 +94,7 @@ MeshFile read_mesh(const std::filesystem::path& path) {
 
 Options Options::from_yaml(std::string_view yaml, std::string_view source) {
   const std::string where(source);
-  YAML::Node root;
-  try {
-    root = YAML::Load(std::string(yaml));
-  } catch (const YAML::ParserException& e) {
-    fail("{}:{}: YAML syntax error: {}", where, e.mark.line + 1, e.msg);
-  }
+  const YAML::Node root = parse_yaml(std::string(yaml), where);
   if (root.IsNull()) return Options{};
   if (!root.IsMap()) fail("{}: expected a mapping of option keys (scheduler: …, threads: …)", where);
   const YamlReader r(where, {});

@@ -184,7 +184,9 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
     root.remove("sweep");  // read by framework/config/sweep.cpp; every run is this config plus its overrides
   }
   std::set<std::string> overridden;
-  for (const auto& o : overrides) overridden.insert(apply_override(root, o));
+  for (const auto& o : overrides)
+    if (!overridden.insert(apply_override(root, o)).second)
+      fail("--set {}: {} is set twice; give each key once", o, o.substr(0, o.find('=')));
   YamlReader r(path, overridden);
   r.check_keys(root, "", {"name", "scene", "bv", "hierarchy", "restructure", "normal_cones", "scheduler", "threads", "tester",
                    "narrow", "memory_limit", "replay", "output"});

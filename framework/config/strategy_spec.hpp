@@ -3,6 +3,7 @@
 // module's options) — validated against its registry exactly like a YAML map {name: NAME, key: value, …};
 // errors name `where` followed by the spec (e.g. "--tester " or "ccdlab.step tester=") instead of a file position.
 #include <string>
+#include <utility>
 
 #include <yaml-cpp/yaml.h>
 
@@ -23,7 +24,9 @@ inline YAML::Node strategy_spec_node(const std::string& spec, const std::string&
     const std::string kv = rest.substr(pos, comma - pos);
     const auto eq = kv.find('=');
     if (eq == std::string::npos || eq == 0) fail("{}{}: expected name:key=value,…, got '{}'", where, spec, kv);
-    node[kv.substr(0, eq)] = kv.substr(eq + 1);
+    const std::string key = kv.substr(0, eq);
+    if (key == "name" || std::as_const(node)[key]) fail("{}{}: '{}' is given twice; give each parameter once", where, spec, key);
+    node[key] = kv.substr(eq + 1);
     pos = comma + 1;
   }
   return node;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "framework/util/files.hpp"
 
@@ -109,13 +110,41 @@ ParamValues::Value YamlReader::param(const YAML::Node& node, const std::string& 
   return {};
 }
 
-YAML::Node load_yaml_file(const std::string& path) {
-  const std::string text = read_file(path);  // names a missing file, a directory, an unreadable file
-  try {
-    return YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    fail("{}:{}: YAML syntax error: {}", path, e.mark.line + 1, e.msg);
+namespace {
+
+/// Fails at the second of two equal keys in any mapping under `node` (`path`: the dotted keys down to it).
+void reject_duplicate_keys(const YAML::Node& node, const std::string& path, const std::string& where) {
+  if (node.IsSequence())
+    for (std::size_t i = 0; i < node.size(); ++i) reject_duplicate_keys(node[i], fmt::format("{}[{}]", path, i), where);
+  if (!node.IsMap()) return;
+  std::map<std::string, int> first_line;
+  for (const auto& kv : node) {
+    const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : std::string();
+    const std::string full = path.empty() ? key : path + "." + key;
+    const int line = kv.first.Mark().line + 1;
+    if (!key.empty()) {
+      const auto [seen, added] = first_line.emplace(key, line);
+      if (!added) fail("{}:{}: {}: given twice (first at line {}); give each key once", where, line, full, seen->second);
+    }
+    reject_duplicate_keys(kv.second, full, where);
   }
+}
+
+}  // namespace
+
+YAML::Node parse_yaml(const std::string& text, const std::string& where) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    fail("{}:{}: YAML syntax error: {}", where, e.mark.line + 1, e.msg);
+  }
+  reject_duplicate_keys(root, "", where);
+  return root;
+}
+
+YAML::Node load_yaml_file(const std::string& path) {
+  return parse_yaml(read_file(path), path);  // read_file names a missing file, a directory, an unreadable file
 }
 
 std::string apply_override(YAML::Node& root, const std::string& assignment) {

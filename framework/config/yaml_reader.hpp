@@ -66,7 +66,11 @@ class YamlReader {
   std::set<std::string> overridden_;
 };
 
-/// Loads a YAML file; parse errors become Error("file:line: …").
+/// Parses YAML text from `where` (a file's name, or what stands for one); a syntax error, or a key given twice
+/// in one mapping (YAML would keep one of them silently), becomes Error("where:line: …").
+YAML::Node parse_yaml(const std::string& text, const std::string& where);
+
+/// Loads a YAML file with parse_yaml.
 YAML::Node load_yaml_file(const std::string& path);
 
 /// Applies "a.b.c=value" to a tree (value parsed as YAML). A scalar standing where a map is needed becomes

@@ -55,6 +55,9 @@ cli_test(bad.yaml_binary 2 "${E}.*binary.yaml:1: expected a mapping of config ke
 cli_test(bad.yaml_syntax 2 "${E}.*syntax_error.yaml:3: YAML syntax error" run ${BAD}/syntax_error.yaml)
 cli_test(bad.yaml_threads_zero 2 "${E}.*threads_zero.yaml:3: threads: expected an integer from 1 to 1024, got '0'" run ${BAD}/threads_zero.yaml)
 cli_test(bad.yaml_threads_huge 2 "${E}.*threads_huge.yaml:3: threads: expected an integer from 1 to 1024, got '100000'" run ${BAD}/threads_huge.yaml)
+cli_test(bad.yaml_key_twice 2 "${E}.*key_twice.yaml:4: threads: given twice \\(first at line 3\\)" run ${BAD}/key_twice.yaml)
+cli_test(bad.yaml_nested_key_twice 2 "${E}.*nested_key_twice.yaml:5: scene.resolution: given twice \\(first at line 4\\)" run ${BAD}/nested_key_twice.yaml)
+cli_test(bad.set_key_twice 2 "${E}--set threads=2: threads is set twice" run ${CLI_DIR}/tiny.yaml --set threads=1 --set threads=2)
 cli_test(bad.yaml_directory 2 "${E}.*bad_inputs: cannot open file \\(it is a directory, expected a file\\)" run ${BAD})
 # A bad last frame is found before the first step: no result files are left behind (checked by the regex on
 # the absence of the table's summary line).
@@ -79,6 +82,7 @@ cli_test(bad.cli_unknown_flag 2 "${E}The following argument was not expected: --
 cli_test(bad.cli_missing_argument 2 "${E}t1 is required" step ${T0})
 cli_test(bad.cli_k_not_a_number 2 "${E}Could not convert: --k = abc" step ${T0} ${T0} --k abc)
 cli_test(bad.cli_k_out_of_range 2 "${E}Could not convert: --k = 99999999999999" step ${T0} ${T0} --k 99999999999999)
+cli_test(bad.cli_tester_key_twice 2 "${E}--tester float:thickness=1e-4,thickness=2e-4: 'thickness' is given twice" step ${T0} ${T0} --tester float:thickness=1e-4,thickness=2e-4)
 cli_test(bad.cli_threads_huge 2 "${E}--threads: expected an integer from 1 to 1024, got 100000" step ${T0} ${T0} --threads 100000)
 cli_test(bad.cli_threads_zero 2 "${E}--threads: expected an integer from 1 to 1024, got 0" step ${T0} ${T0} --threads 0)
 cli_test(bad.cli_bench_threads_huge 2 "${E}--threads: expected a comma-separated list of integers from 1 to 1024, got '1,100000'" bench ${CLI_DIR}/tiny.yaml --threads 1,100000)

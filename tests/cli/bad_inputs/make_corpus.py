@@ -91,6 +91,8 @@ files = {
     "missing_frame.yaml": b"name: t\nscene: {frames: [../fall_t0.obj, ../fall_t1.obj, ../fall_t1.obj, missing_frame.obj]}\n",
     "bad_frame_late.yaml": b"name: t\nscene: {frames: [../fall_t0.obj, ../fall_t1.obj, ../fall_t1.obj, nan.obj]}\n",
     "binary.yaml": bytes(rng.randrange(256) for _ in range(512)),
+    "key_twice.yaml": b"name: t\nscene: {builtin: drape_fold, resolution: 8, num_frames: 3}\nthreads: 1\nthreads: 2\n",
+    "nested_key_twice.yaml": b"name: t\nscene:\n  builtin: drape_fold\n  resolution: 8\n  resolution: 9\n",
     # Query CSV and ground-truth JSON (layout of ../shared/data/ccd-queries)
     "queries/edge-edge/five_columns.csv": b"1,1,0,1,0,1\n" * 7 + b"1,1,0,1,0\n",
     "queries/edge-edge/truncated.csv": b"1,1,0,1,0,1,0\n" * 5,
