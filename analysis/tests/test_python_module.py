@@ -53,6 +53,13 @@ def test_options_are_the_yaml_strategies_and_errors_name_them():
         assert ccdlab.step(x0, x1, faces, end_boxes=end_boxes)["vf"].shape == (1, 4)
     with pytest.raises(ccdlab.Error, match="end_boxes: expected on, off, auto, true or false, got 'often'"):
         ccdlab.step(x0, x1, faces, end_boxes="often")
+    # A thickness far larger than the scene: refused with the estimate, unless the limit allows it.
+    with pytest.raises(ccdlab.Error, match="candidate triangle pairs expected .* above candidate_limit = 0.25 per "
+                                           "triangle: the tester's thickness 100 is"):
+        ccdlab.step(x0, x1, faces, tester="float:thickness=100", candidate_limit=0.25)
+    assert ccdlab.step(x0, x1, faces, tester="float:thickness=100", candidate_limit=0)["vf"].shape[0] > 0
+    with pytest.raises(ccdlab.Error, match="candidate_limit: expected 0 \\(no limit\\) or a finite number > 0"):
+        ccdlab.step(x0, x1, faces, candidate_limit=-1)
     with pytest.raises(ccdlab.Error, match="faces\\[1\\]\\[2\\] = 9 is not a vertex index"):
         ccdlab.step(x0, x1, np.array([[0, 1, 2], [3, 4, 9]]))
     bad = x1.copy()

@@ -45,6 +45,7 @@ int step_command(const StepOptions& o) {
   c.end_boxes = kEndBoxModes.parse(o.end_boxes, "--end-boxes");
   c.memory_limit = o.memory_limit;
   c.memory_limit_bytes = parse_memory_size(o.memory_limit, "--memory-limit");
+  c.candidate_limit = o.candidate_limit;
   c.narrow = {kNarrowModes.parse(o.narrow, "--narrow"), kRepresentativeRules.parse(o.representative, "--representative")};
   c.hierarchy = choose(builder_registry(), "hierarchy", o.hierarchy);
   c.scheduler = choose(scheduler_registry(), "scheduler", o.scheduler);
@@ -89,7 +90,7 @@ int step_command(const StepOptions& o) {
         double(estimate_pipeline_bytes(mesh, o.k, o.width, pipeline.orphans().vf.size() + pipeline.orphans().ee.size(),
                                        pipeline.end_boxes_kept())) / (1 << 20);
     j["config"] = {{"k", o.k}, {"bv_width", o.width}, {"end_boxes", end_boxes_json(end_boxes)}, {"end_boxes_tested", pipeline.end_boxes_in_last_step()}, {"hierarchy", o.hierarchy}, {"scheduler", o.scheduler}, {"threads", o.threads}, {"tester", o.tester},
-                   {"narrow", {{"mode", o.narrow}, {"representative", o.representative}}}, {"memory_limit", o.memory_limit},
+                   {"narrow", {{"mode", o.narrow}, {"representative", o.representative}}}, {"memory_limit", o.memory_limit}, {"candidate_limit", o.candidate_limit},
                    {"simd_target", plane_filter_target()}};
     fmt::print("{}\n", j.dump(2));
   } else {

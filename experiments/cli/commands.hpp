@@ -66,6 +66,7 @@ struct StepOptions {
   std::string representative{to_string(NarrowOptions{}.representative)};
   int threads = PipelineSettings{}.threads;
   std::string memory_limit = kDefaultMemoryLimit;
+  double candidate_limit = kDefaultCandidateLimit;
   std::string contacts_csv;
   bool json = false;
   bool earliest = false;  ///< only the earliest time of contact (CcdPipeline::earliest_toi)

@@ -81,6 +81,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(ccdlab::kRepresentativeRules.names()))->capture_default_str();
   step_cmd->add_option("--memory-limit", step.memory_limit, "resident memory the step may use: 8GiB, 60%, none (above the "
                        "predicted need it streams candidates to the narrow phase)")->capture_default_str();
+  step_cmd->add_option("--candidate-limit", step.candidate_limit, "refuse a step estimated to find more candidate "
+                       "triangle pairs per triangle than this (a thickness in the wrong unit); 0 = no limit")->capture_default_str();
   step_cmd->add_option("--contacts", step.contacts_csv, "write contacts to this CSV (kind,a,b,c,d,toi,u,v,nx,ny,nz)");
   step_cmd->add_flag("--json", step.json, "print JSON instead of the table");
   step_cmd->add_flag("--earliest", step.earliest, "only the earliest time of contact (1 when none; JSON: earliest_toi), "

@@ -5,6 +5,7 @@
 
 #include "framework/pipeline/phase_clock.hpp"
 #include "framework/pipeline/schedule_sim.hpp"
+#include "framework/pipeline/work_estimate.hpp"
 #include "framework/util/error.hpp"
 #include "framework/util/memory.hpp"
 
@@ -133,6 +134,8 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
       }
     });
 
+  refuse_exploding_work(x_t0, x_t1);
+
   // 3–4. Traversal, its candidates into the narrow phase as they are found; then the orphan set, less the blocks
   //      that moved too little since they were last tested (orphan_certificates.hpp).
   traversal_.test_end_boxes(ends_in_step_);
@@ -150,6 +153,20 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   result.memory.peak_rss_bytes = peak_rss_bytes();
   result.memory.page_faults = minor_page_faults() - faults_at_start;
   return result;
+}
+
+void CcdPipeline::refuse_exploding_work(const Positions& x_t0, const Positions& x_t1) {
+  const double limit = strategies_.candidate_limit, extent = swept_.scene_extent();
+  if (limit <= 0 || (estimated_extent_ >= 0 && !(extent > 2 * estimated_extent_))) return;
+  estimated_extent_ = extent;
+  const WorkEstimate e = estimate_candidates(traversal_.passes(), std::size_t(mesh_.num_faces()));
+  if (!(e.per_face() > limit)) return;
+  const double per_face = e.per_face();
+  fail("step: about {:.2g} candidate triangle pairs expected ({} per triangle of {}, estimated from {} sampled "
+       "triangles), above candidate_limit = {:g} per triangle: {} To run it anyway, raise candidate_limit "
+       "(ccdlab step: --candidate-limit; 0 = no limit).",
+       e.candidates, per_face >= 100 ? fmt::format("{:.0f}", per_face) : fmt::format("{:.2g}", per_face), e.faces, e.sampled, limit,
+       explain_work(mesh_, x_t0, x_t1, strategies_.tester->thickness()));
 }
 
 double CcdPipeline::earliest_toi(const Positions& x_t0, const Positions& x_t1, StepResult* result) {

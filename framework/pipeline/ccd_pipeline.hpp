@@ -87,6 +87,10 @@ class CcdPipeline {
   /// The distance beyond which the tester reports no pair, for every pair of this step (its reach at the scene's
   /// size): end boxes are inflated by half of it.
   [[nodiscard]] double end_reach() const;
+  /// Throws Error, before the traversal, when the step is estimated to find more candidates per triangle than
+  /// candidate_limit (framework/pipeline/work_estimate.hpp). Estimated in the first step, and again in a step
+  /// where the scene has grown to more than twice its extent at the last estimate.
+  void refuse_exploding_work(const Positions& x_t0, const Positions& x_t1);
 
   const TriMesh& mesh_;
   CollisionRules rules_;
@@ -101,6 +105,7 @@ class CcdPipeline {
   bool built_ = false;
   EndBoxRule end_box_rule_;    ///< whether a step tests end boxes
   bool ends_in_step_ = false;  ///< whether this (or the last) step tests them
+  double estimated_extent_ = -1;  ///< the scene's extent at the last work estimate (−1: none yet)
 };
 
 }  // namespace ccdlab

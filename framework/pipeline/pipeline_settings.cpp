@@ -19,6 +19,7 @@ std::string split_threads(long long t) {
 std::string restructure_threshold(double t) {
   return t == 0 || (t >= 1 && std::isfinite(t)) ? "" : "0 (off) or a finite number >= 1";
 }
+std::string candidate_limit(double c) { return c >= 0 && std::isfinite(c) ? "" : "0 (no limit) or a finite number > 0"; }
 }  // namespace setting_check
 
 void PipelineSettings::validate(const SettingName& name) const {
@@ -30,6 +31,7 @@ void PipelineSettings::validate(const SettingName& name) const {
   check("threads", setting_check::threads(threads), threads);
   check("split_threads", setting_check::split_threads(split_threads), split_threads);
   check("restructure.threshold", setting_check::restructure_threshold(restructure_threshold), restructure_threshold);
+  check("candidate_limit", setting_check::candidate_limit(candidate_limit), candidate_limit);
 }
 
 }  // namespace ccdlab

@@ -34,6 +34,9 @@ inline constexpr const char* kDefaultHierarchy = "median";
 inline constexpr const char* kDefaultScheduler = "sequential";
 inline constexpr const char* kDefaultTester = "float";
 inline constexpr const char* kDefaultMemoryLimit = "80%";
+/// candidate_limit's default: 40× the densest real step we know (~26 candidate triangle pairs per triangle, a
+/// tangled 92K-triangle cloth), far below the thousands per triangle of a thickness in the wrong unit.
+inline constexpr double kDefaultCandidateLimit = 1000;
 
 /// How an entry point spells a setting in its messages, given its config key ("bv.k"): YAML writes the key, the
 /// CLI its flag ("--k"), the C++ API its member ("Options::k"). Empty: the key.
@@ -60,6 +63,9 @@ struct PipelineSettings {
   /// Stream every step in (about) this many slices per pass, whatever the memory: to test streaming and to
   /// measure its cost. 0 = only when the memory limit asks for it.
   std::size_t stream_slices = 0;
+  /// candidate_limit: a step estimated (framework/pipeline/work_estimate.hpp) to find more candidate triangle
+  /// pairs per triangle than this is refused before its traversal, with the numbers that explain it. 0 = no limit.
+  double candidate_limit = kDefaultCandidateLimit;
   /// narrow {mode, representative}: how the narrow phase runs (framework/narrow/).
   NarrowOptions narrow;
 
@@ -76,6 +82,7 @@ namespace setting_check {
 [[nodiscard]] std::string threads(long long t);
 [[nodiscard]] std::string split_threads(long long t);
 [[nodiscard]] std::string restructure_threshold(double t);
+[[nodiscard]] std::string candidate_limit(double c);
 }  // namespace setting_check
 
 }  // namespace ccdlab

@@ -100,4 +100,9 @@ cli_test(bad.memory_scene_too_large 2 "${E}memory_limit 1.00 GiB: scene drape_fo
 cli_test(bad.memory_run_too_large 2 "${E}memory_limit 1.0 MiB: this run needs about .* before its first step" run ${CLI_DIR}/tiny.yaml --set memory_limit=1MiB --set output.dir=out)
 cli_test(bad.memory_limit_value 2 "${E}--set memory_limit: memory_limit: expected a size like 8GiB, 512MiB or 60%" run ${CLI_DIR}/tiny.yaml --set memory_limit=lots)
 cli_test(bad.memory_limit_flag 2 "${E}--memory-limit: expected a size like 8GiB, 512MiB or 60%" step ${T0} ${T0} --memory-limit 2X)
+# Work: a step estimated to explode (a thickness in the wrong unit) is refused before its traversal, naming the
+# estimate, the limit and the thickness against the scene; no result is left behind as complete.
+cli_test(bad.work_thickness_run 2 "^ccdlab run tiny.*${E}step: about .* candidate triangle pairs expected .*above candidate_limit = 10 per triangle: the tester's thickness 10 is .* the scene's diagonal" run ${CLI_DIR}/tiny.yaml --no-progress --set tester.thickness=10 --set candidate_limit=10 --set output.dir=out_work)
+cli_test(bad.work_thickness_step 2 "${E}step: about 1 candidate triangle pairs expected \\(0.5 per triangle of 2.*above candidate_limit = 0.25 per triangle" step ${T0} ${CLI_DIR}/fall_t1.obj --tester float:thickness=10 --candidate-limit 0.25)
+cli_test(bad.work_limit_value 2 "${E}--candidate-limit: expected 0 \\(no limit\\) or a finite number > 0, got -1" step ${T0} ${T0} --candidate-limit -1)
 cli_test(ok.memory_limit_step 0 "contacts vf=3 ee=0" step ${T0} ${CLI_DIR}/fall_t1.obj --memory-limit 64MiB)

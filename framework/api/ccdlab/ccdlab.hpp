@@ -53,9 +53,13 @@ struct Options {
   std::string representative = "fixed";  ///< narrow.representative: fixed or first_free
   bool normal_cones = false;
   std::string memory_limit = "80%";      ///< "8GiB", "60%" (of this machine) or "none"
+  /// A step estimated to find more candidate triangle pairs per triangle than this is refused (throws ccdlab::Error
+  /// naming the numbers: a thickness in the wrong unit, frames of different scales); 0 = no limit.
+  double candidate_limit = 1000;
 
   /// Options from YAML text with the keys of an experiment's strategy section — bv {k, width, end_boxes}, hierarchy,
-  /// scheduler, threads, tester, narrow {mode, representative}, normal_cones, memory_limit — and no others.
+  /// scheduler, threads, tester, narrow {mode, representative}, normal_cones, memory_limit, candidate_limit — and no
+  /// others.
   /// `source` names the text in errors ("<source>:line: key: expected …, got …").
   static Options from_yaml(std::string_view yaml, std::string_view source = "ccdlab::Options::from_yaml");
 };

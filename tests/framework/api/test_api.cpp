@@ -35,7 +35,8 @@ std::vector<Point> points(const Positions& x) {
 
 TEST(Api, OptionsFromYamlTakeTheStrategyKeys) {
   const Options o = Options::from_yaml("bv: {k: 26, width: 2}\nscheduler: phc\nthreads: 2\ntester: {name: conservative, delta: 1e-6}\n"
-                                       "narrow: {mode: scalar, representative: first_free}\nnormal_cones: true\nmemory_limit: 1GiB");
+                                       "narrow: {mode: scalar, representative: first_free}\nnormal_cones: true\nmemory_limit: 1GiB\n"
+                                       "candidate_limit: 50");
   EXPECT_EQ(o.k, 26);
   EXPECT_EQ(o.width, 2);
   EXPECT_EQ(o.scheduler.rfind("phc", 0), 0u) << o.scheduler;  // with its parameters' defaults filled in
@@ -46,6 +47,7 @@ TEST(Api, OptionsFromYamlTakeTheStrategyKeys) {
   EXPECT_EQ(o.representative, "first_free");
   EXPECT_TRUE(o.normal_cones);
   EXPECT_EQ(o.memory_limit, "1GiB");
+  EXPECT_EQ(o.candidate_limit, 50);
   EXPECT_EQ(Options::from_yaml("").scheduler, "sequential");
   EXPECT_EQ(Options::from_yaml("").end_boxes, "auto");
   EXPECT_EQ(Options::from_yaml("bv: {end_boxes: true}").end_boxes, "on");
@@ -91,6 +93,7 @@ TEST(Api, OptionsDefaultsAreThePipelinesDefaults) {
   EXPECT_EQ(o.narrow, to_string(c.narrow.mode));
   EXPECT_EQ(o.representative, to_string(c.narrow.representative));
   EXPECT_EQ(o.memory_limit, c.memory_limit);
+  EXPECT_EQ(o.candidate_limit, c.candidate_limit);
 }
 
 TEST(Api, DetectorFindsThePipelinesContactsForEveryScheduler) {
