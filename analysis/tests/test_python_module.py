@@ -73,7 +73,8 @@ def test_faces_must_hold_integers_and_every_message_names_its_call():
     with pytest.raises(ccdlab.Error, match=r"^ccdlab.step: faces\[0\]\[0\] = 0.5 is not an integer vertex index"):
         ccdlab.step(x0, x1, np.array([[0.5, 1, 2], [3, 4, 5]]))
     assert ccdlab.step(x0, x1, faces.astype(float))["vf"].tolist() == [[3, 0, 1, 2]]  # integral floats are fine
-    with pytest.raises(ccdlab.Error, match=r"^ccdlab.step: faces must be an F×3 array of integer vertex indices"):
+    with pytest.raises(ccdlab.Error, match=r"^ccdlab.step: faces must be an F×3 array-like of integer vertex indices, "
+                                           r"got an array of dtype <U1 and shape 1×3"):
         ccdlab.step(x0, x1, np.array([["a", "b", "c"]]))
     with pytest.raises(ccdlab.Error, match=r"^ccdlab.step: faces: face 1: degenerate"):
         ccdlab.step(x0, x1, np.array([[0, 1, 2], [3, 4, 4]]))
@@ -85,6 +86,36 @@ def test_faces_must_hold_integers_and_every_message_names_its_call():
         ccdlab.earliest_toi(x0, x1, faces, kk=1)
     with pytest.raises(ccdlab.Error, match=r"^ccdlab.earliest_toi: faces\[0\]\[1\] = 1.5"):
         ccdlab.earliest_toi(x0, x1, np.array([[0, 1.5, 2]]))
+
+
+def test_array_likes_are_converted_and_the_rest_refused_naming_shape_and_dtype():
+    x0, x1, faces = falling_vertex()
+    expected = ccdlab.step(x0, x1, faces)["hash"]
+    def doubled(a):  # every other row of a twice-as-long array: not contiguous
+        return np.repeat(a, 2, axis=0)[::2]
+    for name, (a, b, f) in {
+            "lists": (x0.tolist(), x1.tolist(), faces.tolist()),
+            "tuples": (tuple(map(tuple, x0)), tuple(map(tuple, x1)), tuple(map(tuple, faces))),
+            "float32 and int32": (x0.astype(np.float32), x1.astype(np.float32), faces.astype(np.int32)),
+            "Fortran order": (np.asfortranarray(x0), np.asfortranarray(x1), np.asfortranarray(faces)),
+            "strided": (doubled(x0), doubled(x1), doubled(faces)),
+            "uint16 faces": (x0, x1, faces.astype(np.uint16))}.items():
+        assert not name.startswith("strided") or not a.flags["C_CONTIGUOUS"]
+        assert ccdlab.step(a, b, f)["hash"] == expected, name
+        assert ccdlab.earliest_toi(a, b, f) == pytest.approx(0.8, abs=1e-9), name
+    assert ccdlab.sequence([x0.tolist(), x1.tolist()], faces.tolist())[0]["hash"] == expected
+    assert ccdlab.sequence(np.stack([x0, x1]), faces)[0]["hash"] == expected
+    for args, message in [
+            (("abc", x1, faces), "x0 must be an N×3 array-like of positions, got str"),
+            ((None, x1, faces), "x0 must be an N×3 array-like of positions, got NoneType"),
+            (([[0, 0], [1, 2, 3]], x1, faces), "x0 must be an N×3 array-like of positions, got list that NumPy cannot read"),
+            ((x0, x1[:, :2], faces), "x1 must be an N×3 array-like of positions, got an array of dtype float64 and shape 6×2"),
+            ((x0, x1, "abc"), "faces must be an F×3 array-like of integer vertex indices, got str"),
+            ((x0, x1, [0, 1, 2]), "faces must be an F×3 array-like of integer vertex indices, got an array of dtype int64 and shape 3")]:
+        with pytest.raises(ccdlab.Error, match="^ccdlab.step: " + message.replace("(", r"\(")):
+            ccdlab.step(*args)
+    with pytest.raises(ccdlab.Error, match="^ccdlab.sequence: frames must be a list of N×3 array-likes of positions, got str"):
+        ccdlab.sequence("abc", faces)
 
 
 def test_earliest_toi_is_the_steps_earliest_contact():

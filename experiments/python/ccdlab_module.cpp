@@ -35,13 +35,38 @@ namespace py = pybind11;
 namespace ccdlab {
 namespace {
 
-using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
-using Triangles = py::array;  // any numeric dtype: integers, or floats that hold integers (checked, never cut)
+// Arrays arrive as any array-like — a NumPy array of any numeric dtype, order or strides, a list, a tuple — and
+// are converted here (a copy where needed); what NumPy cannot convert is refused with ccdlab.Error naming the
+// call, the argument, the expected shape and what came, never with a binding's TypeError.
+using Points = py::object;     // N×3 positions, converted to C-ordered float64
+using Triangles = py::object;  // F×3 vertex indices: integers, or floats that hold integers (checked, never cut)
+using Float64 = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// What came, for a message: its type, and its dtype and shape where it is an array.
+std::string described(const py::handle& value) {
+  if (py::isinstance<py::array>(value)) {
+    const auto a = py::reinterpret_borrow<py::array>(value);
+    std::string shape;
+    for (py::ssize_t d = 0; d < a.ndim(); ++d) shape += (d ? "×" : "") + std::to_string(a.shape(d));
+    return fmt::format("an array of dtype {} and shape {}", std::string(py::str(a.dtype())), a.ndim() ? shape : "()");
+  }
+  return fmt::format("{}", std::string(py::str(py::type::of(value).attr("__name__"))));
+}
+
+/// `value` as a C-ordered float64 array, or Error "<call>: <name> must be <expected>, got …".
+Float64 as_float64(const py::handle& value, const char* call, const std::string& name, const char* expected) {
+  if (value.is_none() || py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value))
+    fail("{}: {} must be {}, got {}", call, name, expected, described(value));
+  Float64 a = Float64::ensure(value);  // null, the Python error cleared, where NumPy cannot convert it
+  if (!a) fail("{}: {} must be {}, got {} that NumPy cannot read as float64 numbers", call, name, expected, described(value));
+  return a;
+}
 
 // Every message starts with the call it comes from (`call`: "ccdlab.step", "ccdlab.sequence", …).
-Positions to_positions(const Points& a, const char* call, const std::string& name) {
-  if (a.ndim() != 2 || a.shape(1) != 3) fail("{}: {} must be an N×3 array of positions, got shape {}", call, name,
-                                             a.ndim() == 2 ? fmt::format("{}×{}", a.shape(0), a.shape(1)) : "of another rank");
+Positions to_positions(const Points& value, const char* call, const std::string& name) {
+  constexpr const char* kExpected = "an N×3 array-like of positions";
+  const Float64 a = as_float64(value, call, name, kExpected);
+  if (a.ndim() != 2 || a.shape(1) != 3) fail("{}: {} must be {}, got {}", call, name, kExpected, described(a));
   Positions p(std::size_t(a.shape(0)));
   const auto r = a.unchecked<2>();
   for (py::ssize_t i = 0; i < a.shape(0); ++i) {
@@ -51,13 +76,17 @@ Positions to_positions(const Points& a, const char* call, const std::string& nam
   return p;
 }
 
-std::vector<Face> to_faces(const Triangles& a, std::size_t vertices, const char* call) {
+std::vector<Face> to_faces(const Triangles& value, std::size_t vertices, const char* call) {
+  constexpr const char* kExpected = "an F×3 array-like of integer vertex indices";
+  if (value.is_none() || py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value))
+    fail("{}: faces must be {}, got {}", call, kExpected, described(value));
+  const py::array a = py::array::ensure(value);
+  if (!a) fail("{}: faces must be {}, got {} that NumPy cannot read as an array", call, kExpected, described(value));
   const char kind = a.dtype().kind();
-  if (kind != 'i' && kind != 'u' && kind != 'f')
-    fail("{}: faces must be an F×3 array of integer vertex indices, got dtype {}", call, std::string(py::str(a.dtype())));
-  if (a.ndim() != 2 || a.shape(1) != 3) fail("{}: faces must be an F×3 array of vertex indices", call);
+  if (kind != 'i' && kind != 'u' && kind != 'f') fail("{}: faces must be {}, got {}", call, kExpected, described(a));
+  if (a.ndim() != 2 || a.shape(1) != 3) fail("{}: faces must be {}, got {}", call, kExpected, described(a));
   // As doubles: every int64 index this library can hold (< 2^31) is exact, and a float that is not an integer shows.
-  const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  const Float64 d = as_float64(a, call, "faces", kExpected);
   std::vector<Face> f(std::size_t(a.shape(0)));
   const auto r = d.unchecked<2>();
   for (py::ssize_t i = 0; i < a.shape(0); ++i)
@@ -199,7 +228,7 @@ py::dict result_dict(const StepResult& r, const Positions& x0, const Positions& 
 }
 
 /// Runs the pipeline over consecutive frames (one BVH, refit each step, as `ccdlab run`).
-py::list run_frames(const std::vector<Points>& frames, const Triangles& faces, const py::kwargs& options,
+py::list run_frames(const std::vector<py::object>& frames, const Triangles& faces, const py::kwargs& options,
                     const char* call = "ccdlab.sequence") {
   if (frames.size() < 2) fail("{}: expected at least two frames, got {}", call, frames.size());
   const bool two = std::string_view(call) != "ccdlab.sequence";  // step / earliest_toi: x0 and x1
@@ -290,8 +319,11 @@ PYBIND11_MODULE(ccdlab, m) {
       "The earliest time of contact in [0, 1] of one step (1.0 when none), without solving the pairs that cannot "
       "beat the best time found so far; options as step(). Never later than the truth with tester='conservative' "
       "or 'exact'.");
-  m.def("sequence", [](const std::vector<Points>& frames, const Triangles& faces, const py::kwargs& options) {
-          return run_frames(frames, faces, options);
+  m.def("sequence", [](const py::object& frames, const Triangles& faces, const py::kwargs& options) {
+          const char* call = "ccdlab.sequence";
+          if (!py::isinstance<py::sequence>(frames) || py::isinstance<py::str>(frames))
+            fail("{}: frames must be a list of N×3 array-likes of positions, got {}", call, described(frames));
+          return run_frames(frames.cast<std::vector<py::object>>(), faces, options, call);
         }, py::arg("frames"), py::arg("faces"),
         "CCD over consecutive frames (a list of N×3 arrays) of one mesh: a list of step dicts (as step()).");
   m.def("validate", &validate, py::arg("paths"), py::arg("testers") = std::vector<std::string>{"float", "filtered", "conservative", "exact"},
