@@ -157,8 +157,10 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
 
 void CcdPipeline::refuse_exploding_work(const Positions& x_t0, const Positions& x_t1) {
   const double limit = strategies_.candidate_limit, extent = swept_.scene_extent();
-  if (limit <= 0 || (estimated_extent_ >= 0 && !(extent > 2 * estimated_extent_))) return;
+  if (estimated_extent_ >= 0 && !(extent > 2 * estimated_extent_)) return;
   estimated_extent_ = extent;
+  if (const std::string problem = scale_problem(x_t0, x_t1); !problem.empty()) fail("step: {}", problem);
+  if (limit <= 0) return;
   const WorkEstimate e = estimate_candidates(traversal_.passes(), std::size_t(mesh_.num_faces()));
   if (!(e.per_face() > limit)) return;
   const double per_face = e.per_face();

@@ -87,9 +87,10 @@ class CcdPipeline {
   /// The distance beyond which the tester reports no pair, for every pair of this step (its reach at the scene's
   /// size): end boxes are inflated by half of it.
   [[nodiscard]] double end_reach() const;
-  /// Throws Error, before the traversal, when the step is estimated to find more candidates per triangle than
-  /// candidate_limit (framework/pipeline/work_estimate.hpp). Estimated in the first step, and again in a step
-  /// where the scene has grown to more than twice its extent at the last estimate.
+  /// Throws Error, before the traversal, when the frames lie beyond the coordinates the pipeline computes reliably
+  /// or the step is estimated to find more candidates per triangle than candidate_limit
+  /// (framework/pipeline/work_estimate.hpp). Checked in the first step, and again in a step where the scene has
+  /// grown to more than twice its extent at the last check.
   void refuse_exploding_work(const Positions& x_t0, const Positions& x_t1);
 
   const TriMesh& mesh_;

@@ -71,17 +71,45 @@ WorkEstimate estimate_candidates(const std::vector<TraversalPass>& passes, std::
   return e;
 }
 
-std::string explain_work(const TriMesh& mesh, const Positions& x_t0, const Positions& x_t1, double thickness) {
+namespace {
+
+struct SceneSize {
+  double diagonal = 0, largest = 0;  ///< the bounding box's diagonal over both frames; the largest |coordinate|
+};
+SceneSize scene_size(const Positions& x_t0, const Positions& x_t1) {
   Box3 box;
+  for (std::size_t v = 0; v < x_t0.size(); ++v) box.grow(x_t0[v]), box.grow(x_t1[v]);
+  if (x_t0.empty()) return {};
+  // stableNorm: the diagonal of a scene at 1e-200 must not underflow to 0 on the way.
+  return {box.extent().stableNorm(), std::max(box.lo.cwiseAbs().maxCoeff(), box.hi.cwiseAbs().maxCoeff())};
+}
+
+}  // namespace
+
+std::string scale_problem(const Positions& x_t0, const Positions& x_t1) {
+  const SceneSize s = scene_size(x_t0, x_t1);
+  if (s.largest > kMaxCoordinate)
+    return fmt::format("coordinates up to {:.3g}, above {:g}: ccdlab's bounding volumes are single precision and the "
+                       "float tester multiplies three coordinates, both would overflow; express the scene in a larger "
+                       "unit", s.largest, kMaxCoordinate);
+  if (s.diagonal > 0 && s.diagonal < kMinDiagonal)
+    return fmt::format("the scene's bounding-box diagonal is {:.3g}, below {:g}: the float tester's tolerances "
+                       "(products of three lengths) would underflow; express the scene in a smaller unit",
+                       s.diagonal, kMinDiagonal);
+  return {};
+}
+
+std::string explain_work(const TriMesh& mesh, const Positions& x_t0, const Positions& x_t1, double thickness) {
   double motion = 0;
-  for (std::size_t v = 0; v < x_t0.size(); ++v) {
-    box.grow(x_t0[v]), box.grow(x_t1[v]);
-    motion = std::max(motion, (x_t1[v] - x_t0[v]).norm());
-  }
-  const double diagonal = box.extent().norm();
+  for (std::size_t v = 0; v < x_t0.size(); ++v) motion = std::max(motion, (x_t1[v] - x_t0[v]).norm());
+  const auto [diagonal, largest] = scene_size(x_t0, x_t1);
   double edges = 0;
   for (const Edge& edge : mesh.edges()) edges += (x_t0[edge[1]] - x_t0[edge[0]]).norm();
   const double mean_edge = mesh.edges().empty() ? 0.0 : edges / double(mesh.edges().size());
+  if (diagonal < 1e-5 * largest)  // a float's step at the scene's coordinates is above a fiftieth of its size
+    return fmt::format("the scene (diagonal {:.3g}) lies at coordinates up to {:.3g}: at that distance from the origin "
+                       "single-precision bounding volumes cannot tell its triangles apart; move it near the origin.",
+                       diagonal, largest);
   if (thickness >= 0.1 * mean_edge && thickness > 0)
     return fmt::format("the tester's thickness {:g} is {:.3g}× the scene's diagonal ({:.3g}) and {:.3g}× its mean edge "
                        "length ({:.3g}): is it in the scene's units? A thickness is usually below the mean edge length.",

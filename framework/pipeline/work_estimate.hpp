@@ -32,6 +32,15 @@ inline constexpr std::size_t kWorkEstimateSamples = 256;
 [[nodiscard]] WorkEstimate estimate_candidates(const std::vector<TraversalPass>& passes, std::size_t faces,
                                                std::size_t samples = kWorkEstimateSamples);
 
+/// The coordinates the pipeline computes reliably: |x| up to kMaxCoordinate (its bounding volumes are single
+/// precision, and the float tester's cubic multiplies three coordinates), and a scene whose bounding-box diagonal
+/// is 0 or at least kMinDiagonal (the float tester's tolerances multiply three lengths: below, they underflow
+/// and its answers are wrong). Between them lie 60 orders of magnitude: scenes scaled by 1e±6 answer as unscaled.
+inline constexpr double kMaxCoordinate = 1e30, kMinDiagonal = 1e-30;
+
+/// Empty when the frames lie within those bounds; else what is wrong, as a sentence for a refusal.
+[[nodiscard]] std::string scale_problem(const Positions& x_t0, const Positions& x_t1);
+
 /// Why a step over these frames would have `estimate`'s work: the tester's thickness against the scene's
 /// bounding-box diagonal and the mesh's mean edge length (at x_t0), or, where the thickness is small, the
 /// largest vertex motion of the step. One or two sentences, ending in their punctuation, for the refusal's message.
