@@ -60,6 +60,10 @@ def test_options_are_the_yaml_strategies_and_errors_name_them():
     assert ccdlab.step(x0, x1, faces, tester="float:thickness=100", candidate_limit=0)["vf"].shape[0] > 0
     with pytest.raises(ccdlab.Error, match="candidate_limit: expected 0 \\(no limit\\) or a finite number > 0"):
         ccdlab.step(x0, x1, faces, candidate_limit=-1)
+    # A step past its time limit stops and says so; with room it runs.
+    with pytest.raises(ccdlab.Error, match="time_limit 1e-09 s: the step was stopped after"):
+        ccdlab.step(x0, x1, faces, time_limit=1e-9)
+    assert ccdlab.step(x0, x1, faces, time_limit=600)["vf"].shape == (1, 4)
     with pytest.raises(ccdlab.Error, match="faces\\[1\\]\\[2\\] = 9 is not a vertex index"):
         ccdlab.step(x0, x1, np.array([[0, 1, 2], [3, 4, 9]]))
     bad = x1.copy()

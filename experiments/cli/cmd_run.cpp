@@ -10,6 +10,7 @@
 #include "framework/util/error.hpp"
 #include "framework/util/files.hpp"
 #include "framework/util/memory.hpp"
+#include "experiments/cli/step_progress.hpp"
 #include "framework/util/progress.hpp"
 #include "strategies/registry.hpp"
 
@@ -72,6 +73,7 @@ nlohmann::json run_experiment(const ExperimentConfig& config, const Registries& 
   // When the table rows go to the same terminal they are the progress; otherwise show a progress line.
   const bool table_on_terminal = table && isatty(STDOUT_FILENO);
   Progress progress("ccdlab run", scene.num_steps(), o.progress && !table_on_terminal);
+  StepProgressLine step_line(pipeline, o.progress);  // inside a step that runs longer than two seconds
   std::vector<double> total_ms, build_ms, cones_ms, swept_ms, refit_ms, traverse_ms, narrow_ms, orphan_ms;
   std::uint64_t hash = contact_set_hash({}), vf = 0, ee = 0, bv_tests = 0, candidates = 0, vf_tests = 0, ee_tests = 0, orphan_pairs = 0, orphan_tests = 0,
                 tests_filtered = 0, tests_fallback = 0, peak_rss = 0, streamed_steps = 0, page_faults = 0;
@@ -79,6 +81,7 @@ nlohmann::json run_experiment(const ExperimentConfig& config, const Registries& 
   for (int s = 0; s < scene.num_steps(); ++s) {
     Positions x_t1 = scene.frame(s + 1);
     StepResult r = pipeline.step(x_t0, x_t1);
+    step_line.clear();
     const std::uint64_t step_hash = contact_set_hash(r.contacts);
     hash = contact_set_hash(r.contacts, hash);
     vf += r.counters.contacts_vf;

@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "experiments/cli/commands.hpp"
+#include "experiments/cli/step_progress.hpp"
 #include "framework/config/pipeline_config.hpp"
 #include "framework/config/strategy_spec.hpp"
 #include "experiments/cli/report.hpp"
@@ -46,6 +47,7 @@ int step_command(const StepOptions& o) {
   c.memory_limit = o.memory_limit;
   c.memory_limit_bytes = parse_memory_size(o.memory_limit, "--memory-limit");
   c.candidate_limit = o.candidate_limit;
+  c.time_limit = o.time_limit;
   c.narrow = {kNarrowModes.parse(o.narrow, "--narrow"), kRepresentativeRules.parse(o.representative, "--representative")};
   c.hierarchy = choose(builder_registry(), "hierarchy", o.hierarchy);
   c.scheduler = choose(scheduler_registry(), "scheduler", o.scheduler);
@@ -70,8 +72,12 @@ int step_command(const StepOptions& o) {
   OutputFile contacts;  // opened before the step: an unwritable path is reported before the work
   if (!o.contacts_csv.empty()) contacts = OutputFile(o.contacts_csv, "--contacts");
   StepResult r;
-  const double earliest = o.earliest ? pipeline.earliest_toi(m0.positions, m1.positions, &r) : 1.0;
-  if (!o.earliest) r = pipeline.step(m0.positions, m1.positions);
+  double earliest = 1.0;
+  {
+    StepProgressLine line(pipeline, o.progress);
+    if (o.earliest) earliest = pipeline.earliest_toi(m0.positions, m1.positions, &r);
+    else r = pipeline.step(m0.positions, m1.positions);
+  }
   const std::uint64_t hash = contact_set_hash(r.contacts);
 
   if (!o.contacts_csv.empty()) {
@@ -90,7 +96,7 @@ int step_command(const StepOptions& o) {
         double(estimate_pipeline_bytes(mesh, o.k, o.width, pipeline.orphans().vf.size() + pipeline.orphans().ee.size(),
                                        pipeline.end_boxes_kept())) / (1 << 20);
     j["config"] = {{"k", o.k}, {"bv_width", o.width}, {"end_boxes", end_boxes_json(end_boxes)}, {"end_boxes_tested", pipeline.end_boxes_in_last_step()}, {"hierarchy", o.hierarchy}, {"scheduler", o.scheduler}, {"threads", o.threads}, {"tester", o.tester},
-                   {"narrow", {{"mode", o.narrow}, {"representative", o.representative}}}, {"memory_limit", o.memory_limit}, {"candidate_limit", o.candidate_limit},
+                   {"narrow", {{"mode", o.narrow}, {"representative", o.representative}}}, {"memory_limit", o.memory_limit}, {"candidate_limit", o.candidate_limit}, {"time_limit", o.time_limit},
                    {"simd_target", plane_filter_target()}};
     fmt::print("{}\n", j.dump(2));
   } else {

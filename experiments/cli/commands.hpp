@@ -67,6 +67,8 @@ struct StepOptions {
   int threads = PipelineSettings{}.threads;
   std::string memory_limit = kDefaultMemoryLimit;
   double candidate_limit = kDefaultCandidateLimit;
+  double time_limit = 0;
+  bool progress = true;  ///< a progress line on stderr while a long step runs (when stderr is a terminal)
   std::string contacts_csv;
   bool json = false;
   bool earliest = false;  ///< only the earliest time of contact (CcdPipeline::earliest_toi)

@@ -83,6 +83,10 @@ int main(int argc, char** argv) {
                        "predicted need it streams candidates to the narrow phase)")->capture_default_str();
   step_cmd->add_option("--candidate-limit", step.candidate_limit, "refuse a step estimated to find more candidate "
                        "triangle pairs per triangle than this (a thickness in the wrong unit); 0 = no limit")->capture_default_str();
+  step_cmd->add_option("--time-limit", step.time_limit, "seconds the step may run: past them it stops, exit 2; 0 = no "
+                       "limit")->capture_default_str();
+  bool step_no_progress = false;
+  step_cmd->add_flag("--no-progress", step_no_progress, "no progress line on stderr while a long step runs");
   step_cmd->add_option("--contacts", step.contacts_csv, "write contacts to this CSV (kind,a,b,c,d,toi,u,v,nx,ny,nz)");
   step_cmd->add_flag("--json", step.json, "print JSON instead of the table");
   step_cmd->add_flag("--earliest", step.earliest, "only the earliest time of contact (1 when none; JSON: earliest_toi), "
@@ -169,7 +173,10 @@ int main(int argc, char** argv) {
       run.progress = !no_progress;
       return run_command(run);
     }
-    if (*step_cmd) return step_command(step);
+    if (*step_cmd) {
+      step.progress = !step_no_progress;
+      return step_command(step);
+    }
     if (*simulate_cmd) {
       simulate.progress = !simulate_no_progress;
       return simulate_command(simulate);

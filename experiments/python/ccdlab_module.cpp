@@ -155,12 +155,14 @@ PipelineStrategies strategies_from(const py::kwargs& options, const char* call) 
       c.normal_cones = value.cast<bool>();
     } else if (key == "candidate_limit") {
       c.candidate_limit = value.cast<double>();
+    } else if (key == "time_limit") {
+      c.time_limit = value.cast<double>();
     } else if (key == "end_boxes") {
       c.end_boxes = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? EndBoxMode::on : EndBoxMode::off)
                                                      : kEndBoxModes.parse(value.cast<std::string>(), named("end_boxes"));
     } else {
       fail("{}: unknown option '{}' (k, width, end_boxes, hierarchy, scheduler, threads, tester, narrow, representative, "
-           "normal_cones, candidate_limit)", call, key);
+           "normal_cones, candidate_limit, time_limit)", call, key);
     }
   }
   // Python spells a setting by its keyword: bv.k → k, narrow.mode → narrow.

@@ -67,6 +67,7 @@ PipelineConfig config_of(const Options& o) {
   c.memory_limit = o.memory_limit;
   c.memory_limit_bytes = parse_memory_size(o.memory_limit, "Options::memory_limit");
   c.candidate_limit = o.candidate_limit;
+  c.time_limit = o.time_limit;
   c.validate(option_name);
   return c;
 }
@@ -99,7 +100,8 @@ Options Options::from_yaml(std::string_view yaml, std::string_view source) {
   if (root.IsNull()) return Options{};
   if (!root.IsMap()) fail("{}: expected a mapping of option keys (scheduler: …, threads: …)", where);
   const YamlReader r(where, {});
-  r.check_keys(root, "", {"bv", "hierarchy", "scheduler", "threads", "tester", "narrow", "normal_cones", "memory_limit", "candidate_limit"});
+  r.check_keys(root, "", {"bv", "hierarchy", "scheduler", "threads", "tester", "narrow", "normal_cones", "memory_limit", "candidate_limit",
+                          "time_limit"});
   PipelineConfig c;
   try {
     read_strategy_section(r, root, builtin_registries(), c);
@@ -113,6 +115,7 @@ Options Options::from_yaml(std::string_view yaml, std::string_view source) {
   o.representative = to_string(c.narrow.representative);
   o.memory_limit = c.memory_limit;
   o.candidate_limit = c.candidate_limit;
+  o.time_limit = c.time_limit;
   return o;
 }
 

@@ -189,7 +189,8 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
       fail("--set {}: {} is set twice; give each key once", o, o.substr(0, o.find('=')));
   YamlReader r(path, overridden);
   r.check_keys(root, "", {"name", "scene", "bv", "hierarchy", "restructure", "normal_cones", "scheduler", "threads", "tester",
-                   "narrow", "memory_limit", "candidate_limit", "replay", "output"});
+                   "narrow", "memory_limit", "candidate_limit", "time_limit", "replay",
+                   "output"});
 
   ExperimentConfig c;
   c.source = path;
@@ -257,11 +258,14 @@ void read_strategy_section(const YamlReader& r, const YAML::Node& root, const Re
   }
   if (const YAML::Node n = root["threads"])
     c.threads = checked(n, "threads", r.integer(n, "threads", -1e18, 1e18), setting_check::threads);
-  if (const YAML::Node n = root["candidate_limit"]) {
-    c.candidate_limit = r.real(n, "candidate_limit", -1e300, 1e300);
-    if (const std::string expected = setting_check::candidate_limit(c.candidate_limit); !expected.empty())
-      r.error(n, "candidate_limit", expected);
-  }
+  const auto limit = [&](const char* key, double& value, std::string (*check)(double)) {
+    if (const YAML::Node n = root[key]) {
+      value = r.real(n, key, -1e300, 1e300);
+      if (const std::string expected = check(value); !expected.empty()) r.error(n, key, expected);
+    }
+  };
+  limit("candidate_limit", c.candidate_limit, setting_check::candidate_limit);
+  limit("time_limit", c.time_limit, setting_check::time_limit);
   if (root["memory_limit"]) c.memory_limit = r.string(root["memory_limit"], "memory_limit");
   try {
     c.memory_limit_bytes = parse_memory_size(c.memory_limit, "memory_limit");
@@ -288,6 +292,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
   j["memory_limit"] = c.memory_limit;
   j["memory_limit_bytes"] = c.memory_limit_bytes;
   j["candidate_limit"] = c.candidate_limit;
+  j["time_limit"] = c.time_limit;
   j["tester"] = params_json(c.tester);
   return j;
 }

@@ -135,13 +135,18 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
     });
 
   refuse_exploding_work(x_t0, x_t1);
+  watch_.start(strategies_.time_limit, expected_candidates_, &progress_);
+  narrow_driver_.watch(&watch_);
 
   // 3–4. Traversal, its candidates into the narrow phase as they are found; then the orphan set, less the blocks
   //      that moved too little since they were last tested (orphan_certificates.hpp).
   traversal_.test_end_boxes(ends_in_step_);
   traversal_.run(std::size_t(mesh_.num_faces()), narrow_driver_, result);
+  refuse_late_step("its candidates");
   clock.serial("orphan_motion", &tm.orphan_ms, [&] { narrow_.begin_orphans(x_t0, x_t1); });
   narrow_driver_.test_orphans(strategies_.normal_cones ? &face_patch_ : nullptr, result);
+  refuse_late_step("its orphan set");
+  expected_candidates_ = double(result.counters.candidate_pairs);
   narrow_.end_step(result.counters);
   end_box_rule_.record(ends_in_step_, result.counters.candidate_pairs);
 
@@ -162,6 +167,7 @@ void CcdPipeline::refuse_exploding_work(const Positions& x_t0, const Positions& 
   if (const std::string problem = scale_problem(x_t0, x_t1); !problem.empty()) fail("step: {}", problem);
   if (limit <= 0) return;
   const WorkEstimate e = estimate_candidates(traversal_.passes(), std::size_t(mesh_.num_faces()));
+  expected_candidates_ = e.candidates;
   if (!(e.per_face() > limit)) return;
   const double per_face = e.per_face();
   fail("step: about {:.2g} candidate triangle pairs expected ({} per triangle of {}, estimated from {} sampled "
@@ -169,6 +175,15 @@ void CcdPipeline::refuse_exploding_work(const Positions& x_t0, const Positions& 
        "(ccdlab step: --candidate-limit; 0 = no limit).",
        e.candidates, per_face >= 100 ? fmt::format("{:.0f}", per_face) : fmt::format("{:.2g}", per_face), e.faces, e.sampled, limit,
        explain_work(mesh_, x_t0, x_t1, strategies_.tester->thickness()));
+}
+
+void CcdPipeline::refuse_late_step(const char* where) {
+  if (!watch_.expired()) return;
+  const double expected = watch_.pairs_expected();
+  fail("time_limit {:g} s: the step was stopped after {:.1f} s, in {}, with {} candidate pairs tested{}; raise "
+       "time_limit (ccdlab step: --time-limit; 0 = no limit)",
+       strategies_.time_limit, watch_.seconds(), where, watch_.pairs_done(),
+       expected > 0 ? fmt::format(" of about {:.2g} expected", expected) : std::string());
 }
 
 double CcdPipeline::earliest_toi(const Positions& x_t0, const Positions& x_t1, StepResult* result) {

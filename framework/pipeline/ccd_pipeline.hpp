@@ -20,6 +20,7 @@
 #include "framework/pipeline/narrow_driver.hpp"
 #include "framework/pipeline/pipeline_settings.hpp"
 #include "framework/pipeline/step_result.hpp"
+#include "framework/pipeline/step_watch.hpp"
 #include "framework/swept/feature_bounds.hpp"
 #include "framework/pipeline/traversal_driver.hpp"
 #include "framework/primitive/tester.hpp"
@@ -62,6 +63,9 @@ class CcdPipeline {
   /// Keep every candidate of a step for last_candidates() (tests, the quality meter). Off by default: the
   /// narrow phase takes the candidates while the traversal finds them, and no list holds them all.
   void keep_candidates(bool on) { traversal_.keep_candidates(on); }
+  /// Reports a long step's progress (candidate pairs tested of those expected) from its workers, at most every
+  /// half second once it has run two seconds (framework/pipeline/step_watch.hpp). Empty: none.
+  void set_progress(ProgressReport report) { progress_ = std::move(report); }
   /// How many candidates a thread gathers before the narrow phase takes them (TraversalOutput::hand_over).
   void set_hand_over_pairs(std::size_t pairs) { traversal_.set_hand_over_pairs(pairs); }
   /// Candidate face pairs of the last step (unsorted) and their BV test count; throws Error unless
@@ -92,6 +96,8 @@ class CcdPipeline {
   /// (framework/pipeline/work_estimate.hpp). Checked in the first step, and again in a step where the scene has
   /// grown to more than twice its extent at the last check.
   void refuse_exploding_work(const Positions& x_t0, const Positions& x_t1);
+  /// Throws Error when the step ran past time_limit (its workers stopped taking work): `where` the step was.
+  void refuse_late_step(const char* where);
 
   const TriMesh& mesh_;
   CollisionRules rules_;
@@ -107,6 +113,9 @@ class CcdPipeline {
   EndBoxRule end_box_rule_;    ///< whether a step tests end boxes
   bool ends_in_step_ = false;  ///< whether this (or the last) step tests them
   double estimated_extent_ = -1;  ///< the scene's extent at the last work estimate (−1: none yet)
+  double expected_candidates_ = 0;  ///< for the progress report: the estimate, then the last step's count
+  StepWatch watch_;
+  ProgressReport progress_;
 };
 
 }  // namespace ccdlab

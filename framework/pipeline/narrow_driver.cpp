@@ -18,7 +18,8 @@ constexpr std::size_t kOrphanChunk = 128 * OrphanCertificates::kBlock;  // whole
 }  // namespace
 
 template <class Gather>
-void NarrowDriver::run_chunk(ThreadState& s, Gather&& gather) const {
+void NarrowDriver::run_chunk(ThreadState& s, std::size_t candidates, Gather&& gather) const {
+  if (watch_ && watch_->expired()) return;  // past the time limit: the pipeline throws once the threads are done
   FeatureBatch& batch = s.scratch.batch;
   batch.clear();
   const auto t = Clock::now();
@@ -31,6 +32,7 @@ void NarrowDriver::run_chunk(ThreadState& s, Gather&& gather) const {
     s.tested_ee.insert(s.tested_ee.end(), batch.ee.begin(), batch.ee.end());
   }
   narrow_.run(s.scratch, s.contacts, s.counters);
+  if (watch_) watch_->advance(candidates);
 }
 
 double NarrowDriver::merge(const std::vector<PerThread<ThreadState>>& local, StepResult& result) const {
@@ -49,12 +51,13 @@ double NarrowDriver::merge(const std::vector<PerThread<ThreadState>>& local, Ste
 }
 
 template <class Gather>
-void NarrowDriver::in_parallel(std::size_t n, std::size_t chunk, const char* phase, double* timing, StepResult& result,
-                               Gather&& gather) const {
+void NarrowDriver::in_parallel(std::size_t n, std::size_t chunk, bool candidates, const char* phase, double* timing,
+                               StepResult& result, Gather&& gather) const {
   PhaseClock(result).parallel(phase, timing, [&](PhaseTrace& trace) {
     std::vector<PerThread<ThreadState>>& local = thread_states();
     parallel_chunks(n, chunk, threads_, trace, [&](std::size_t b, std::size_t e, int tid) {
-      run_chunk(local[tid].value, [&](NarrowScratch& scratch, NarrowCounters& c) { gather(b, e, scratch, c); });
+      run_chunk(local[tid].value, candidates ? e - b : 0,
+                [&](NarrowScratch& scratch, NarrowCounters& c) { gather(b, e, scratch, c); });
     });
     trace.serial_ms += merge(local, result);
   });
@@ -79,7 +82,7 @@ void NarrowDriver::InTraversal::take(int tid, std::span<const FacePair> pairs) {
   const auto t = Clock::now();
   for (std::size_t b = 0; b < pairs.size(); b += kCandidateChunk) {
     const auto piece = pairs.subspan(b, std::min(kCandidateChunk, pairs.size() - b));
-    driver_.run_chunk(local_[tid].value, [&](NarrowScratch& scratch, NarrowCounters& c) {
+    driver_.run_chunk(local_[tid].value, piece.size(), [&](NarrowScratch& scratch, NarrowCounters& c) {
       driver_.narrow_.gather(piece, scratch, c, !driver_.record_tested_);
     });
   }
@@ -101,7 +104,7 @@ double NarrowDriver::InTraversal::finish(StepResult& result) {
 
 void NarrowDriver::test_candidates(const CandidateList& pairs, StepResult& result) const {
   result.counters.candidate_pairs += pairs.size();
-  in_parallel(pairs.size(), kCandidateChunk, "narrow", &result.timings.narrow_ms, result,
+  in_parallel(pairs.size(), kCandidateChunk, true, "narrow", &result.timings.narrow_ms, result,
               [&](std::size_t b, std::size_t e, NarrowScratch& scratch, NarrowCounters& c) {
                 pairs.for_each_span(b, e, [&](std::span<const FacePair> s) { narrow_.gather(s, scratch, c, !record_tested_); });
               });
@@ -116,7 +119,7 @@ void NarrowDriver::test_orphans(const std::vector<Index>* face_patch, StepResult
     return (*face_patch)[f] >= 0 && (*face_patch)[f] == (*face_patch)[g];
   };
   const std::size_t nvf = orphans.vf.size(), n = nvf + orphans.ee.size();
-  in_parallel(n, kOrphanChunk, "orphans", &result.timings.orphan_ms, result, [&](std::size_t b, std::size_t e, NarrowScratch& scratch, NarrowCounters& lc) {
+  in_parallel(n, kOrphanChunk, false, "orphans", &result.timings.orphan_ms, result, [&](std::size_t b, std::size_t e, NarrowScratch& scratch, NarrowCounters& lc) {
     FeatureBatch& batch = scratch.batch;
     if (!face_patch) return narrow_.gather_orphans(b, e, batch, lc, !record_tested_);  // recorded: all of them
     for (std::size_t i = b; i < std::min(e, nvf); ++i) {

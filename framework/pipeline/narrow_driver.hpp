@@ -11,6 +11,7 @@
 
 #include "framework/narrow/narrow_phase.hpp"
 #include "framework/pipeline/step_result.hpp"
+#include "framework/pipeline/step_watch.hpp"
 
 namespace ccdlab {
 
@@ -20,6 +21,9 @@ class NarrowDriver {
 
   /// Tests of the ownership rule: record every feature pair gathered into StepResult::tested_*.
   void record_tested(bool on) { record_tested_ = on; }
+  /// The step's clock (time limit, progress): each chunk of candidates advances it, and once it has expired the
+  /// workers take no more chunks (the pipeline then throws). Null: none.
+  void watch(StepWatch* watch) { watch_ = watch; }
 
   /// One thread's state over a parallel loop: what it found and counted, and its batch memory.
   struct ThreadState {
@@ -57,15 +61,16 @@ class NarrowDriver {
   void test_orphans(const std::vector<Index>* face_patch, StepResult& result) const;
 
  private:
-  /// One chunk on one thread: `gather(scratch, counters)` fills the scratch's batch, which is then culled and tested.
+  /// One chunk of `candidates` candidate pairs (0 for orphans) on one thread: `gather(scratch, counters)` fills
+  /// the scratch's batch, which is then culled and tested; nothing once the step's watch has expired.
   template <class Gather>
-  void run_chunk(ThreadState& state, Gather&& gather) const;
+  void run_chunk(ThreadState& state, std::size_t candidates, Gather&& gather) const;
   /// `n` items in chunks on every thread, as the phase `phase` (its ms added to `*timing`):
   /// `gather(begin, end, scratch, counters)` puts a chunk's feature pairs into the scratch's batch; the threads' results are
   /// merged into `result`.
   template <class Gather>
-  void in_parallel(std::size_t n, std::size_t chunk, const char* phase, double* timing, StepResult& result,
-                   Gather&& gather) const;
+  void in_parallel(std::size_t n, std::size_t chunk, bool candidates, const char* phase, double* timing,
+                   StepResult& result, Gather&& gather) const;
   /// Appends the threads' contacts, counters and recorded pairs to `result`, in thread order; returns its ms.
   double merge(const std::vector<PerThread<ThreadState>>& local, StepResult& result) const;
   /// One state per thread, emptied but keeping its memory: a dense step's contacts would otherwise grow into
@@ -76,6 +81,7 @@ class NarrowDriver {
   const NarrowPhase& narrow_;
   int threads_;
   bool record_tested_ = false;
+  StepWatch* watch_ = nullptr;
   mutable std::vector<PerThread<ThreadState>> states_;
 };
 

@@ -20,6 +20,7 @@ std::string restructure_threshold(double t) {
   return t == 0 || (t >= 1 && std::isfinite(t)) ? "" : "0 (off) or a finite number >= 1";
 }
 std::string candidate_limit(double c) { return c >= 0 && std::isfinite(c) ? "" : "0 (no limit) or a finite number > 0"; }
+std::string time_limit(double s) { return s >= 0 && std::isfinite(s) ? "" : "0 (no limit) or a finite number of seconds > 0"; }
 }  // namespace setting_check
 
 void PipelineSettings::validate(const SettingName& name) const {
@@ -32,6 +33,7 @@ void PipelineSettings::validate(const SettingName& name) const {
   check("split_threads", setting_check::split_threads(split_threads), split_threads);
   check("restructure.threshold", setting_check::restructure_threshold(restructure_threshold), restructure_threshold);
   check("candidate_limit", setting_check::candidate_limit(candidate_limit), candidate_limit);
+  check("time_limit", setting_check::time_limit(time_limit), time_limit);
 }
 
 }  // namespace ccdlab

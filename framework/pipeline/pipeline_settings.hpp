@@ -66,6 +66,9 @@ struct PipelineSettings {
   /// candidate_limit: a step estimated (framework/pipeline/work_estimate.hpp) to find more candidate triangle
   /// pairs per triangle than this is refused before its traversal, with the numbers that explain it. 0 = no limit.
   double candidate_limit = kDefaultCandidateLimit;
+  /// time_limit: seconds a step may run (framework/pipeline/step_watch.hpp); past them its workers stop taking
+  /// work and the step throws Error with what it had done. 0 = no limit.
+  double time_limit = 0;
   /// narrow {mode, representative}: how the narrow phase runs (framework/narrow/).
   NarrowOptions narrow;
 
@@ -83,6 +86,7 @@ namespace setting_check {
 [[nodiscard]] std::string split_threads(long long t);
 [[nodiscard]] std::string restructure_threshold(double t);
 [[nodiscard]] std::string candidate_limit(double c);
+[[nodiscard]] std::string time_limit(double seconds);
 }  // namespace setting_check
 
 }  // namespace ccdlab

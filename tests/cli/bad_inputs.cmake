@@ -105,4 +105,9 @@ cli_test(bad.memory_limit_flag 2 "${E}--memory-limit: expected a size like 8GiB,
 cli_test(bad.work_thickness_run 2 "^ccdlab run tiny.*${E}step: about .* candidate triangle pairs expected .*above candidate_limit = 10 per triangle: the tester's thickness 10 is .* the scene's diagonal" run ${CLI_DIR}/tiny.yaml --no-progress --set tester.thickness=10 --set candidate_limit=10 --set output.dir=out_work)
 cli_test(bad.work_thickness_step 2 "${E}step: about 1 candidate triangle pairs expected \\(0.5 per triangle of 2.*above candidate_limit = 0.25 per triangle" step ${T0} ${CLI_DIR}/fall_t1.obj --tester float:thickness=10 --candidate-limit 0.25)
 cli_test(bad.work_limit_value 2 "${E}--candidate-limit: expected 0 \\(no limit\\) or a finite number > 0, got -1" step ${T0} ${T0} --candidate-limit -1)
+# Time: a step past time_limit stops, exit 2, saying where it was and how far it got; no result is left as complete.
+cli_test(bad.time_limit_step 2 "${E}time_limit 1e-09 s: the step was stopped after .* candidate pairs tested of about .* expected" step ${T0} ${CLI_DIR}/fall_t1.obj --time-limit 1e-9)
+cli_test(bad.time_limit_run 2 "^ccdlab run tiny.*${E}time_limit 1e-09 s: the step was stopped" run ${CLI_DIR}/tiny.yaml --no-progress --set time_limit=1e-9 --set output.dir=out_time)
+cli_test(bad.time_limit_value 2 "${E}--time-limit: expected 0 \\(no limit\\) or a finite number of seconds > 0, got -2" step ${T0} ${T0} --time-limit -2)
+cli_test(ok.time_limit_step 0 "contacts vf=3 ee=0" step ${T0} ${CLI_DIR}/fall_t1.obj --time-limit 600 --no-progress)
 cli_test(ok.memory_limit_step 0 "contacts vf=3 ee=0" step ${T0} ${CLI_DIR}/fall_t1.obj --memory-limit 64MiB)

@@ -56,10 +56,12 @@ struct Options {
   /// A step estimated to find more candidate triangle pairs per triangle than this is refused (throws ccdlab::Error
   /// naming the numbers: a thickness in the wrong unit, frames of different scales); 0 = no limit.
   double candidate_limit = 1000;
+  /// Seconds a step may run; past them it stops and throws ccdlab::Error saying how far it got. 0 = no limit.
+  double time_limit = 0;
 
   /// Options from YAML text with the keys of an experiment's strategy section — bv {k, width, end_boxes}, hierarchy,
-  /// scheduler, threads, tester, narrow {mode, representative}, normal_cones, memory_limit, candidate_limit — and no
-  /// others.
+  /// scheduler, threads, tester, narrow {mode, representative}, normal_cones, memory_limit, candidate_limit,
+  /// time_limit — and no others.
   /// `source` names the text in errors ("<source>:line: key: expected …, got …").
   static Options from_yaml(std::string_view yaml, std::string_view source = "ccdlab::Options::from_yaml");
 };

@@ -94,6 +94,7 @@ TEST(Api, OptionsDefaultsAreThePipelinesDefaults) {
   EXPECT_EQ(o.representative, to_string(c.narrow.representative));
   EXPECT_EQ(o.memory_limit, c.memory_limit);
   EXPECT_EQ(o.candidate_limit, c.candidate_limit);
+  EXPECT_EQ(o.time_limit, c.time_limit);
 }
 
 TEST(Api, DetectorFindsThePipelinesContactsForEveryScheduler) {

@@ -55,7 +55,7 @@ TEST_F(Config, DefaultsAndTypedValues) {
 TEST_F(Config, UnknownKeysAreLocatedWithAHint) {
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\nschedular: sequential\n"),
             "exp.yaml:2: schedular: unknown key (did you mean 'scheduler'?); valid keys are: name, scene, bv, "
-            "hierarchy, restructure, normal_cones, scheduler, threads, tester, narrow, memory_limit, candidate_limit, replay, output");
+            "hierarchy, restructure, normal_cones, scheduler, threads, tester, narrow, memory_limit, candidate_limit, time_limit, replay, output");
   EXPECT_EQ(error_of("scene:\n  builtin: drape_fold\n  resolution: 10\n  sphere_radus: 1\n"),
             "exp.yaml:4: scene.sphere_radus: unknown key (did you mean 'sphere_radius'?); valid keys are: builtin, "
             "resolution, num_frames, fold_deg, crease, crease_radius, wrinkle, sphere_radius, sphere_segments, "

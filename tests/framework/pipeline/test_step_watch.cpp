@@ -1,0 +1,108 @@
+// A step's time limit and progress (step_watch.hpp): past time_limit the workers stop taking chunks and the step
+// throws Error saying where it was and how far it got; without a limit it runs to the end; the progress report
+// counts the candidate pairs tested, is called once per due time whatever the threads, and is silent before
+// its first due time.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <limits>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "framework/pipeline/ccd_pipeline.hpp"
+#include "framework/pipeline/step_watch.hpp"
+#include "framework/util/error.hpp"
+#include "strategies/registry.hpp"
+#include "support/test_meshes.hpp"
+
+namespace ccdlab {
+namespace {
+
+PipelineStrategies strategies(double time_limit, int threads) {
+  PipelineStrategies s = contact_strategies(18, threads > 1 ? "phc" : "sequential", threads, 0.0);
+  s.time_limit = time_limit;
+  return s;
+}
+
+struct Crumpled {
+  MeshData grid = test::grid(24, 24);
+  TriMesh mesh = TriMesh(Index(grid.positions.size()), grid.faces);
+  Positions x0, x1;
+  Crumpled() {
+    std::mt19937 rng(11);
+    x0 = test::crumple(grid.positions, rng, 0.02);
+    x1 = test::crumple(x0, rng, 0.02);
+  }
+};
+
+TEST(StepWatch, AStepPastItsTimeLimitStopsAndSaysHowFarItGot) {
+  const Crumpled c;
+  for (const int threads : {1, 2}) {
+    CcdPipeline p(c.mesh, single_cloth_body(c.mesh), strategies(1e-9, threads));
+    std::string message;
+    try {
+      (void)p.step(c.x0, c.x1);
+    } catch (const Error& e) {
+      message = e.what();
+    }
+    EXPECT_NE(message.find("time_limit 1e-09 s: the step was stopped after"), std::string::npos) << message;
+    EXPECT_NE(message.find("candidate pairs tested of about"), std::string::npos) << message;  // the first step's estimate
+    EXPECT_NE(message.find("raise time_limit"), std::string::npos) << message;
+    // With a limit far above the step it runs whole: the contacts of a pipeline without one.
+    CcdPipeline limited(c.mesh, single_cloth_body(c.mesh), strategies(3600, threads));
+    CcdPipeline free(c.mesh, single_cloth_body(c.mesh), strategies(0, threads));
+    const StepResult a = limited.step(c.x0, c.x1), b = free.step(c.x0, c.x1);
+    EXPECT_GT(a.contacts.size(), 0u);
+    EXPECT_EQ(contact_set_hash(a.contacts), contact_set_hash(b.contacts));
+  }
+}
+
+TEST(StepWatch, ReportsTheTestedPairsOncePerDueTime) {
+  StepWatch watch;
+  std::atomic<int> calls{0};
+  std::atomic<std::uint64_t> last_done{0};
+  const ProgressReport report = [&](const StepProgress& p) {
+    ++calls;
+    last_done = p.pairs_done;
+    EXPECT_EQ(p.pairs_expected, 4000.0);
+  };
+  // Not due yet: silent.
+  watch.start(0, 4000, &report, std::chrono::milliseconds(60'000));
+  watch.advance(100);
+  EXPECT_EQ(calls, 0);
+  EXPECT_EQ(watch.pairs_done(), 100u);
+  EXPECT_FALSE(watch.expired());
+  // Due at once: eight threads advancing together make one report in the first half second.
+  watch.start(0, 4000, &report, std::chrono::milliseconds(0));
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 8; ++t)
+    threads.emplace_back([&] {
+      for (int i = 0; i < 50; ++i) watch.advance(10);
+    });
+  for (std::thread& t : threads) t.join();
+  EXPECT_EQ(watch.pairs_done(), 4000u);
+  EXPECT_GE(calls, 1);
+  EXPECT_LE(calls, 2);  // a second only if the loop took longer than kReportEvery
+  EXPECT_GT(last_done, 0u);
+  // A limit already past: expired, and stays so.
+  watch.start(1e-9, 0, nullptr);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  EXPECT_TRUE(watch.expired());
+  EXPECT_TRUE(watch.expired());
+}
+
+TEST(StepWatch, TheLimitIsChecked) {
+  PipelineSettings settings;
+  for (const double bad : {-1.0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()}) {
+    settings.time_limit = bad;
+    EXPECT_THROW(settings.validate(), Error) << bad;
+  }
+  settings.time_limit = 0.5;
+  EXPECT_NO_THROW(settings.validate());
+}
+
+}  // namespace
+}  // namespace ccdlab
