@@ -135,7 +135,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
     });
 
   refuse_exploding_work(x_t0, x_t1);
-  watch_.start(strategies_.time_limit, expected_candidates_, &progress_);
+  watch_.start(strategies_.time_limit, room_for_contacts(), expected_candidates_, &progress_);
   narrow_driver_.watch(&watch_);
 
   // 3–4. Traversal, its candidates into the narrow phase as they are found; then the orphan set, less the blocks
@@ -177,9 +177,25 @@ void CcdPipeline::refuse_exploding_work(const Positions& x_t0, const Positions& 
        explain_work(mesh_, x_t0, x_t1, strategies_.tester->thickness()));
 }
 
+std::uint64_t CcdPipeline::room_for_contacts() const {
+  const std::uint64_t limit = strategies_.memory_limit_bytes;
+  if (limit == 0) return 0;
+  const std::uint64_t resident = current_rss_bytes(), free = limit > resident ? limit - resident : 0;
+  // Half of what is left: the other half is the candidates' (memory_budget.hpp streams them within it).
+  return std::max<std::uint64_t>(1, free / 2 / StepWatch::kBytesPerContact);
+}
+
 void CcdPipeline::refuse_late_step(const char* where) {
-  if (!watch_.expired()) return;
   const double expected = watch_.pairs_expected();
+  if (watch_.out_of_room())
+    fail("memory_limit {}: the step's contacts would not fit: {} found, in {}, after {} candidate pairs{} (each "
+         "holds ~{} bytes until the step ends; room for {}); raise memory_limit{}",
+         format_bytes(strategies_.memory_limit_bytes), watch_.contacts(), where, watch_.pairs_done(),
+         expected > 0 ? fmt::format(" of about {:.2g}", expected) : std::string(), StepWatch::kBytesPerContact,
+         watch_.max_contacts(),
+         strategies_.tester->thickness() > 0 ? fmt::format(", or lower the tester's thickness ({:g})", strategies_.tester->thickness())
+                                              : std::string());
+  if (!watch_.expired()) return;
   fail("time_limit {:g} s: the step was stopped after {:.1f} s, in {}, with {} candidate pairs tested{}; raise "
        "time_limit (ccdlab step: --time-limit; 0 = no limit)",
        strategies_.time_limit, watch_.seconds(), where, watch_.pairs_done(),

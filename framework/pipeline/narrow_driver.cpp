@@ -19,7 +19,8 @@ constexpr std::size_t kOrphanChunk = 128 * OrphanCertificates::kBlock;  // whole
 
 template <class Gather>
 void NarrowDriver::run_chunk(ThreadState& s, std::size_t candidates, Gather&& gather) const {
-  if (watch_ && watch_->expired()) return;  // past the time limit: the pipeline throws once the threads are done
+  if (watch_ && watch_->stopped()) return;  // past a limit: the pipeline throws once the threads are done
+  const std::size_t contacts_before = s.contacts.size();
   FeatureBatch& batch = s.scratch.batch;
   batch.clear();
   const auto t = Clock::now();
@@ -32,7 +33,7 @@ void NarrowDriver::run_chunk(ThreadState& s, std::size_t candidates, Gather&& ga
     s.tested_ee.insert(s.tested_ee.end(), batch.ee.begin(), batch.ee.end());
   }
   narrow_.run(s.scratch, s.contacts, s.counters);
-  if (watch_) watch_->advance(candidates);
+  if (watch_) watch_->advance(candidates, s.contacts.size() - contacts_before);
 }
 
 double NarrowDriver::merge(const std::vector<PerThread<ThreadState>>& local, StepResult& result) const {

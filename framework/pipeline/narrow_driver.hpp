@@ -21,8 +21,8 @@ class NarrowDriver {
 
   /// Tests of the ownership rule: record every feature pair gathered into StepResult::tested_*.
   void record_tested(bool on) { record_tested_ = on; }
-  /// The step's clock (time limit, progress): each chunk of candidates advances it, and once it has expired the
-  /// workers take no more chunks (the pipeline then throws). Null: none.
+  /// The step's watch (time limit, room for contacts, progress): each chunk advances it, and once it has stopped
+  /// the workers take no more chunks (the pipeline then throws). Null: none.
   void watch(StepWatch* watch) { watch_ = watch; }
 
   /// One thread's state over a parallel loop: what it found and counted, and its batch memory.
@@ -62,7 +62,7 @@ class NarrowDriver {
 
  private:
   /// One chunk of `candidates` candidate pairs (0 for orphans) on one thread: `gather(scratch, counters)` fills
-  /// the scratch's batch, which is then culled and tested; nothing once the step's watch has expired.
+  /// the scratch's batch, which is then culled and tested; nothing once the step's watch has stopped.
   template <class Gather>
   void run_chunk(ThreadState& state, std::size_t candidates, Gather&& gather) const;
   /// `n` items in chunks on every thread, as the phase `phase` (its ms added to `*timing`):

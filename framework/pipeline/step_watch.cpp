@@ -2,11 +2,15 @@
 
 namespace ccdlab {
 
-void StepWatch::start(double limit_s, double expected, const ProgressReport* report, std::chrono::milliseconds report_after) {
+void StepWatch::start(double limit_s, std::uint64_t max_contacts, double expected, const ProgressReport* report,
+                      std::chrono::milliseconds report_after) {
   start_ = Clock::now();
   limited_ = limit_s > 0;
   if (limited_) deadline_ = start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit_s));
   expected_ = expected;
+  max_contacts_ = max_contacts;
+  contacts_.store(0, std::memory_order_relaxed);
+  out_of_room_.store(false, std::memory_order_relaxed);
   report_ = report && *report ? report : nullptr;
   done_.store(0, std::memory_order_relaxed);
   expired_.store(false, std::memory_order_relaxed);
@@ -20,8 +24,10 @@ bool StepWatch::expired() {
   return true;
 }
 
-void StepWatch::advance(std::uint64_t pairs) {
+void StepWatch::advance(std::uint64_t pairs, std::uint64_t contacts) {
   const std::uint64_t done = done_.fetch_add(pairs, std::memory_order_relaxed) + pairs;
+  const std::uint64_t found = contacts_.fetch_add(contacts, std::memory_order_relaxed) + contacts;
+  if (max_contacts_ > 0 && found > max_contacts_) out_of_room_.store(true, std::memory_order_relaxed);
   (void)expired();
   if (!report_) return;
   const Clock::time_point now = Clock::now();

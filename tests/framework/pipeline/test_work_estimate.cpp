@@ -12,6 +12,7 @@
 #include "framework/pipeline/work_estimate.hpp"
 #include "framework/util/error.hpp"
 #include "strategies/registry.hpp"
+#include "support/error_of.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
@@ -26,13 +27,9 @@ PipelineStrategies strategies(double thickness, double candidate_limit) {
   return s;
 }
 
+/// The message of the Error a step throws; empty when it throws none.
 std::string error_of(CcdPipeline& p, const Positions& x0, const Positions& x1) {
-  try {
-    (void)p.step(x0, x1);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return {};
+  return test::error_of([&] { (void)p.step(x0, x1); });
 }
 
 /// A sheet crumpled in its first frame, each vertex moved by up to a tenth of an edge in its second.
@@ -82,7 +79,7 @@ TEST(WorkEstimate, AThicknessInTheWrongUnitIsRefusedWithTheNumbers) {
   // Without the limit, or with one above the estimate, the same step runs.
   for (const double limit : {0.0, 200.0}) {
     CcdPipeline q(s.mesh, single_cloth_body(s.mesh), strategies(10.0, limit));
-    EXPECT_EQ(error_of(q, s.x0, s.x1), "") << limit;
+    EXPECT_EQ(error_of(q, s.x0, s.x1), "no error") << limit;
   }
 }
 
@@ -96,7 +93,7 @@ TEST(WorkEstimate, FramesOfDifferentScalesAreRefusedByTheirMotion) {
   EXPECT_NE(message.find("largest vertex motion"), std::string::npos) << message;
   // A later step whose scene has grown past twice its size is estimated again.
   CcdPipeline q(s.mesh, single_cloth_body(s.mesh), strategies(0.0, 100));
-  EXPECT_EQ(error_of(q, s.x0, s.x1), "");
+  EXPECT_EQ(error_of(q, s.x0, s.x1), "no error");
   EXPECT_NE(error_of(q, s.x1, far).find("largest vertex motion"), std::string::npos);
 }
 
