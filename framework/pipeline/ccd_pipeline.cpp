@@ -165,10 +165,11 @@ void CcdPipeline::refuse_exploding_work(const Positions& x_t0, const Positions& 
   if (estimated_extent_ >= 0 && !(extent > 2 * estimated_extent_)) return;
   estimated_extent_ = extent;
   if (const std::string problem = scale_problem(x_t0, x_t1); !problem.empty()) fail("step: {}", problem);
-  if (limit <= 0) return;
+  // Estimated whatever the limit: the memory plan and the progress report read it too.
   const WorkEstimate e = estimate_candidates(traversal_.passes(), std::size_t(mesh_.num_faces()));
   expected_candidates_ = e.candidates;
-  if (!(e.per_face() > limit)) return;
+  traversal_.expect_candidates(e.candidates);
+  if (limit <= 0 || !(e.per_face() > limit)) return;
   const double per_face = e.per_face();
   fail("step: about {:.2g} candidate triangle pairs expected ({} per triangle of {}, estimated from {} sampled "
        "triangles), above candidate_limit = {:g} per triangle: {} To run it anyway, raise candidate_limit "

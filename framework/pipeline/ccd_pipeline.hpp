@@ -93,8 +93,8 @@ class CcdPipeline {
   [[nodiscard]] double end_reach() const;
   /// Throws Error, before the traversal, when the frames lie beyond the coordinates the pipeline computes reliably
   /// or the step is estimated to find more candidates per triangle than candidate_limit
-  /// (framework/pipeline/work_estimate.hpp). Checked in the first step, and again in a step where the scene has
-  /// grown to more than twice its extent at the last check.
+  /// (framework/pipeline/work_estimate.hpp); hands the estimate to the memory plan. Checked in the first step, and
+  /// again in a step where the scene has grown to more than twice its extent at the last check.
   void refuse_exploding_work(const Positions& x_t0, const Positions& x_t1);
   /// Throws Error when the step ran past time_limit or out of the room memory_limit leaves for its contacts (its
   /// workers stopped taking work): `where` the step was.

@@ -24,9 +24,11 @@ MemoryPlan MemoryBudget::plan(std::uint64_t resident, std::size_t faces) const {
   if (resident >= limit_)
     fail("memory_limit {}: the mesh, BVH and per-step buffers already take {} resident before the traversal; raise "
          "memory_limit or lower the size of the scene", format_bytes(limit_), format_bytes(resident));
-  p.budget_bytes = limit_ - resident;
-  p.predicted_bytes = last_transient_ > 0 ? grown(last_transient_)
-                                          : std::uint64_t(faces) * kFirstStepCandidatesPerFace * kBytesPerCandidate;
+  p.budget_bytes = (limit_ - resident) / 2;  // half: the other half is the contacts' (StepWatch, room_for_contacts)
+  const std::uint64_t estimated = std::uint64_t(std::min(estimate_, 1e15));  // pairs (1e15: no overflow below)
+  p.predicted_bytes = std::max(estimated * kBytesPerCandidate,
+                               last_transient_ > 0 ? grown(last_transient_)
+                                                   : std::uint64_t(faces) * kFirstStepCandidatesPerFace * kBytesPerCandidate);
   if (p.predicted_bytes <= p.budget_bytes) return p;
   p.streamed = true;
   // Slices small enough that a few of them fill a flush: the buffer never overshoots by much.
@@ -45,6 +47,7 @@ void MemoryBudget::record(std::uint64_t candidate_pairs, std::uint64_t front_byt
   last_transient_ = candidate_pairs * kBytesPerCandidate + front_bytes;
   last_pairs_ = candidate_pairs;
   recorded_ = true;
+  estimate_ = 0;
 }
 
 std::uint64_t estimate_pipeline_bytes(const TriMesh& mesh, int k, int width, std::size_t orphan_pairs, bool end_boxes) {

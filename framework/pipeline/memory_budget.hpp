@@ -19,7 +19,7 @@ struct MemoryPlan {
   bool streamed = false;
   std::size_t slices = 1;           ///< BVTT slices per traversal pass (1 = the whole pass at once)
   std::size_t flush_pairs = 0;      ///< test and free the candidates when this many are buffered (0 = never)
-  std::uint64_t budget_bytes = 0;   ///< memory_limit − resident memory at the start of the traversal
+  std::uint64_t budget_bytes = 0;   ///< half of memory_limit − resident memory at the traversal's start (the other half: contacts)
   std::uint64_t predicted_bytes = 0;
   /// Candidate pairs the step is expected to find (the last step's plus a quarter, or the first-step guess):
   /// the room the candidate list reserves ahead when the step is not streamed.
@@ -53,6 +53,10 @@ class MemoryBudget {
   [[nodiscard]] bool fits(std::uint64_t resident, std::size_t faces) const;
   /// After a step: the transient bytes it would need unstreamed (candidates, front), for the next prediction.
   void record(std::uint64_t candidate_pairs, std::uint64_t front_bytes);
+  /// The next step's candidates as estimated before its traversal (work_estimate.hpp): its plan predicts at least
+  /// these (the first step's guess and the last step's count know nothing of a thickness that explodes the work).
+  /// Used by the next plan only.
+  void expect(double candidate_pairs) { estimate_ = candidate_pairs; }
 
  private:
   std::uint64_t limit_ = 0;  ///< 0 = no limit
@@ -60,6 +64,7 @@ class MemoryBudget {
   std::uint64_t last_transient_ = 0;
   std::uint64_t last_pairs_ = 0;
   bool recorded_ = false;
+  double estimate_ = 0;  ///< expect()'s, for the next plan (0: none)
 };
 
 /// Bytes a pipeline over `mesh` will add before its first traversal: the BVHs and their volumes (the leaves' are

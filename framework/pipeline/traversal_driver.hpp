@@ -27,6 +27,8 @@ class TraversalDriver {
     for (TraversalPass& pass : passes_) pass.test_ends = on;
   }
 
+  /// The next step's candidates as estimated before its traversal: its memory plan predicts at least these.
+  void expect_candidates(double pairs) { budget_.expect(pairs); }
   /// Traverses every pass over a mesh of `faces` triangles and tests its candidates with `narrow`: timings
   /// traverse_ms and narrow_ms, the traversal's counters and the memory plan go to `result`.
   void run(std::size_t faces, const NarrowDriver& narrow, StepResult& result);
