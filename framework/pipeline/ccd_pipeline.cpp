@@ -135,7 +135,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
     });
 
   refuse_exploding_work(x_t0, x_t1);
-  watch_.start(strategies_.time_limit, room_for_contacts(), expected_candidates_, &progress_);
+  watch_.start(strategies_.time_limit, 0, expected_candidates_, &progress_);  // room for contacts: TraversalDriver
   narrow_driver_.watch(&watch_);
 
   // 3–4. Traversal, its candidates into the narrow phase as they are found; then the orphan set, less the blocks
@@ -176,14 +176,6 @@ void CcdPipeline::refuse_exploding_work(const Positions& x_t0, const Positions& 
        "(ccdlab step: --candidate-limit; 0 = no limit).",
        e.candidates, per_face >= 100 ? fmt::format("{:.0f}", per_face) : fmt::format("{:.2g}", per_face), e.faces, e.sampled, limit,
        explain_work(mesh_, x_t0, x_t1, strategies_.tester->thickness()));
-}
-
-std::uint64_t CcdPipeline::room_for_contacts() const {
-  const std::uint64_t limit = strategies_.memory_limit_bytes;
-  if (limit == 0) return 0;
-  const std::uint64_t resident = current_rss_bytes(), free = limit > resident ? limit - resident : 0;
-  // Half of what is left: the other half is the candidates' (memory_budget.hpp streams them within it).
-  return std::max<std::uint64_t>(1, free / 2 / StepWatch::kBytesPerContact);
 }
 
 void CcdPipeline::refuse_late_step(const char* where) {

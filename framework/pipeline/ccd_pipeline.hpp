@@ -99,9 +99,6 @@ class CcdPipeline {
   /// Throws Error when the step ran past time_limit or out of the room memory_limit leaves for its contacts (its
   /// workers stopped taking work): `where` the step was.
   void refuse_late_step(const char* where);
-  /// Contacts the step may hold under memory_limit (StepWatch::kBytesPerContact each, in half of what is not
-  /// resident at its start); 0 without a limit.
-  [[nodiscard]] std::uint64_t room_for_contacts() const;
 
   const TriMesh& mesh_;
   CollisionRules rules_;

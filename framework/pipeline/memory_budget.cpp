@@ -24,7 +24,7 @@ MemoryPlan MemoryBudget::plan(std::uint64_t resident, std::size_t faces) const {
   if (resident >= limit_)
     fail("memory_limit {}: the mesh, BVH and per-step buffers already take {} resident before the traversal; raise "
          "memory_limit or lower the size of the scene", format_bytes(limit_), format_bytes(resident));
-  p.budget_bytes = (limit_ - resident) / 2;  // half: the other half is the contacts' (StepWatch, room_for_contacts)
+  p.budget_bytes = (limit_ - resident) / 2;  // half: the other half is the contacts' (TraversalDriver::run, StepWatch)
   const std::uint64_t estimated = std::uint64_t(std::min(estimate_, 1e15));  // pairs (1e15: no overflow below)
   p.predicted_bytes = std::max(estimated * kBytesPerCandidate,
                                last_transient_ > 0 ? grown(last_transient_)

@@ -24,6 +24,10 @@ class NarrowDriver {
   /// The step's watch (time limit, room for contacts, progress): each chunk advances it, and once it has stopped
   /// the workers take no more chunks (the pipeline then throws). Null: none.
   void watch(StepWatch* watch) { watch_ = watch; }
+  /// The contacts this step may hold under memory_limit (the memory plan's share for them; 0 = no limit).
+  void limit_contacts(std::uint64_t n) const {
+    if (watch_) watch_->set_max_contacts(n);
+  }
 
   /// One thread's state over a parallel loop: what it found and counted, and its batch memory.
   struct ThreadState {

@@ -40,6 +40,8 @@ class StepWatch {
   /// A worker tested `pairs` candidate pairs and found `contacts`: counted, and reported when due. Call between
   /// chunks.
   void advance(std::uint64_t pairs, std::uint64_t contacts);
+  /// The contacts the step may hold (0 = no limit), set once its memory plan is known, before its workers start.
+  void set_max_contacts(std::uint64_t n) { max_contacts_ = n; }
   /// Whether the step has run past its time limit (checked by advance and by this call).
   [[nodiscard]] bool expired();
   /// Whether its contacts have passed max_contacts.

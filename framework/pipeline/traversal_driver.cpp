@@ -1,5 +1,6 @@
 #include "framework/pipeline/traversal_driver.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "framework/traversal/bvtt_tasks.hpp"
@@ -22,6 +23,8 @@ void TraversalDriver::run(std::size_t faces, const NarrowDriver& narrow, StepRes
     if (budget_.limit() > 0) resident = current_rss_bytes();
   }
   const MemoryPlan plan = budget_.plan(resident, faces);
+  // The contacts get as much room as the candidates (memory_budget.hpp, StepWatch::kBytesPerContact each).
+  narrow.limit_contacts(budget_.limit() > 0 ? std::max<std::uint64_t>(1, plan.budget_bytes / StepWatch::kBytesPerContact) : 0);
   candidates_.clear();
   const double traverse_ms = plan.streamed ? run_streamed(plan, narrow, result) : run_at_once(plan, narrow, result);
   budget_.record(result.counters.candidate_pairs, candidates_.stats.front_bytes);
