@@ -135,7 +135,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
     });
 
   refuse_exploding_work(x_t0, x_t1);
-  watch_.start(strategies_.time_limit, 0, expected_candidates_, &progress_);  // room for contacts: TraversalDriver
+  watch_.start(strategies_.time_limit, expected_candidates_, &progress_);  // room for contacts: TraversalDriver
   narrow_driver_.watch(&watch_);
 
   // 3–4. Traversal, its candidates into the narrow phase as they are found; then the orphan set, less the blocks

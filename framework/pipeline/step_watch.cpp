@@ -2,13 +2,12 @@
 
 namespace ccdlab {
 
-void StepWatch::start(double limit_s, std::uint64_t max_contacts, double expected, const ProgressReport* report,
-                      std::chrono::milliseconds report_after) {
+void StepWatch::start(double limit_s, double expected, const ProgressReport* report, std::chrono::milliseconds report_after) {
   start_ = Clock::now();
   limited_ = limit_s > 0;
   if (limited_) deadline_ = start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit_s));
   expected_ = expected;
-  max_contacts_ = max_contacts;
+  max_contacts_ = 0;
   contacts_.store(0, std::memory_order_relaxed);
   out_of_room_.store(false, std::memory_order_relaxed);
   report_ = report && *report ? report : nullptr;

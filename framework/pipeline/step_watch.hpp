@@ -33,9 +33,9 @@ class StepWatch {
   /// Bytes a contact holds until the step's end: in its thread's list, merged, and while sorted (its key and a copy).
   static constexpr std::uint64_t kBytesPerContact = 200;
 
-  /// A step begins: `limit_s` seconds (0 = no limit), `max_contacts` (0 = no limit), `expected` candidate pairs,
-  /// `report` (null: none; must outlive the step), its first call after `report_after`.
-  void start(double limit_s, std::uint64_t max_contacts, double expected, const ProgressReport* report,
+  /// A step begins: `limit_s` seconds (0 = no limit), `expected` candidate pairs, `report` (null: none; must
+  /// outlive the step), its first call after `report_after`. No room limit until set_max_contacts.
+  void start(double limit_s, double expected, const ProgressReport* report,
              std::chrono::milliseconds report_after = kReportAfter);
   /// A worker tested `pairs` candidate pairs and found `contacts`: counted, and reported when due. Call between
   /// chunks.

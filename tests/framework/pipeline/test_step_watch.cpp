@@ -72,13 +72,13 @@ TEST(StepWatch, ReportsTheTestedPairsOncePerDueTime) {
     EXPECT_EQ(p.pairs_expected, 4000.0);
   };
   // Not due yet: silent.
-  watch.start(0, 0, 4000, &report, std::chrono::milliseconds(60'000));
+  watch.start(0, 4000, &report, std::chrono::milliseconds(60'000));
   watch.advance(100, 5);
   EXPECT_EQ(calls, 0);
   EXPECT_EQ(watch.pairs_done(), 100u);
   EXPECT_FALSE(watch.expired());
   // Due at once: eight threads advancing together make one report in the first half second.
-  watch.start(0, 0, 4000, &report, std::chrono::milliseconds(0));
+  watch.start(0, 4000, &report, std::chrono::milliseconds(0));
   std::vector<std::thread> threads;
   for (int t = 0; t < 8; ++t)
     threads.emplace_back([&] {
@@ -92,12 +92,13 @@ TEST(StepWatch, ReportsTheTestedPairsOncePerDueTime) {
   EXPECT_LE(calls, 2);  // a second only if the loop took longer than kReportEvery
   EXPECT_GT(last_done, 0u);
   // A limit already past: expired, and stays so.
-  watch.start(1e-9, 0, 0, nullptr);
+  watch.start(1e-9, 0, nullptr);
   std::this_thread::sleep_for(std::chrono::milliseconds(1));
   EXPECT_TRUE(watch.expired());
   EXPECT_TRUE(watch.expired());
   // Room for 10 contacts: the 11th stops the step.
-  watch.start(0, 10, 0, nullptr);
+  watch.start(0, 0, nullptr);
+  watch.set_max_contacts(10);
   watch.advance(1, 10);
   EXPECT_FALSE(watch.stopped());
   watch.advance(1, 1);
