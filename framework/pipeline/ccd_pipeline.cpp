@@ -175,7 +175,7 @@ void CcdPipeline::refuse_exploding_work(const Positions& x_t0, const Positions& 
        "triangles), above candidate_limit = {:g} per triangle: {} To run it anyway, raise candidate_limit "
        "(ccdlab step: --candidate-limit; 0 = no limit).",
        e.candidates, per_face >= 100 ? fmt::format("{:.0f}", per_face) : fmt::format("{:.2g}", per_face), e.faces, e.sampled, limit,
-       explain_work(mesh_, x_t0, x_t1, strategies_.tester->thickness()));
+       explain_work(mesh_, x_t0, x_t1, strategies_.tester->thickness(), strategies_.tester->thickness_name()));
 }
 
 void CcdPipeline::refuse_late_step(const char* where) {
@@ -186,7 +186,7 @@ void CcdPipeline::refuse_late_step(const char* where) {
          format_bytes(strategies_.memory_limit_bytes), watch_.contacts(), where, watch_.pairs_done(),
          expected > 0 ? fmt::format(" of about {:.2g}", expected) : std::string(), StepWatch::kBytesPerContact,
          watch_.max_contacts(),
-         strategies_.tester->thickness() > 0 ? fmt::format(", or lower the tester's thickness ({:g})", strategies_.tester->thickness())
+         strategies_.tester->thickness() > 0 ? fmt::format(", or lower {} ({:g})", strategies_.tester->thickness_name(), strategies_.tester->thickness())
                                               : std::string());
   if (!watch_.expired()) return;
   fail("time_limit {:g} s: the step was stopped after {:.1f} s, in {}, with {} candidate pairs tested{}; raise "

@@ -99,7 +99,8 @@ std::string scale_problem(const Positions& x_t0, const Positions& x_t1) {
   return {};
 }
 
-std::string explain_work(const TriMesh& mesh, const Positions& x_t0, const Positions& x_t1, double thickness) {
+std::string explain_work(const TriMesh& mesh, const Positions& x_t0, const Positions& x_t1, double thickness,
+                         std::string_view thickness_name) {
   double motion = 0;
   for (std::size_t v = 0; v < x_t0.size(); ++v) motion = std::max(motion, (x_t1[v] - x_t0[v]).norm());
   const auto [diagonal, largest] = scene_size(x_t0, x_t1);
@@ -111,9 +112,9 @@ std::string explain_work(const TriMesh& mesh, const Positions& x_t0, const Posit
                        "single-precision bounding volumes cannot tell its triangles apart; move it near the origin.",
                        diagonal, largest);
   if (thickness >= 0.1 * mean_edge && thickness > 0)
-    return fmt::format("the tester's thickness {:g} is {:.3g}× the scene's diagonal ({:.3g}) and {:.3g}× its mean edge "
-                       "length ({:.3g}): is it in the scene's units? A thickness is usually below the mean edge length.",
-                       thickness, thickness / diagonal, diagonal, thickness / mean_edge, mean_edge);
+    return fmt::format("{} {:g} is {:.3g}× the scene's diagonal ({:.3g}) and {:.3g}× its mean edge length ({:.3g}): is it "
+                       "in the scene's units? It is usually below the mean edge length.",
+                       thickness_name, thickness, thickness / diagonal, diagonal, thickness / mean_edge, mean_edge);
   return fmt::format("the swept volumes overlap most of the scene: the largest vertex motion in this step is {:.3g}, "
                      "{:.3g}× the mean edge length ({:.3g}) and {:.3g}× the scene's diagonal ({:.3g}): are the two "
                      "frames of one simulation, in one unit?",

@@ -44,6 +44,8 @@ inline constexpr double kMaxCoordinate = 1e30, kMinDiagonal = 1e-30;
 /// Why a step over these frames would have `estimate`'s work: the tester's thickness against the scene's
 /// bounding-box diagonal and the mesh's mean edge length (at x_t0), or, where the thickness is small, the
 /// largest vertex motion of the step. One or two sentences, ending in their punctuation, for the refusal's message.
-[[nodiscard]] std::string explain_work(const TriMesh& mesh, const Positions& x_t0, const Positions& x_t1, double thickness);
+/// `thickness_name` says what the thickness is to the user (PrimitiveTester::thickness_name).
+[[nodiscard]] std::string explain_work(const TriMesh& mesh, const Positions& x_t0, const Positions& x_t1, double thickness,
+                                       std::string_view thickness_name = "the tester's thickness");
 
 }  // namespace ccdlab

@@ -22,6 +22,8 @@ class PrimitiveTester {
   [[nodiscard]] virtual std::string_view name() const = 0;
   /// Contact distance η ≥ 0: features closer than η count as touching. The broad phase inflates by it too.
   [[nodiscard]] virtual double thickness() const = 0;
+  /// What the thickness is called where a message names it to the user.
+  [[nodiscard]] virtual std::string_view thickness_name() const { return "the tester's thickness"; }
   [[nodiscard]] virtual CcdHit vertex_face(const VertexFaceQuery& q) const = 0;
   [[nodiscard]] virtual CcdHit edge_edge(const EdgeEdgeQuery& q) const = 0;
   /// Many queries at once: out[i] = vertex_face(q[i]), and the same answers bit for bit. Testers with a batched
