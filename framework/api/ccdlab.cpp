@@ -1,9 +1,11 @@
 // The C++ API (ccdlab/ccdlab.hpp) over the framework: options → PipelineStrategies through the experiment
-// config's own reader, bodies → one concatenated TriMesh, and a CcdPipeline kept across steps.
+// config's own reader, bodies → one concatenated TriMesh, and the pipelines kept across calls: the CCD one, the
+// proximity query's (per d̂) and the line search's (per separation).
 #include "ccdlab/ccdlab.hpp"
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <optional>
 #include <utility>
 
@@ -12,6 +14,7 @@
 #include "framework/mesh/mesh_io.hpp"
 #include "framework/pipeline/bodies.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
+#include "framework/pipeline/proximity_query.hpp"
 #include "framework/util/error.hpp"
 #include "framework/util/memory.hpp"
 #include "strategies/registry.hpp"
@@ -122,24 +125,61 @@ Options Options::from_yaml(std::string_view yaml, std::string_view source) {
 struct Detector::Impl {
   PipelineConfig config;
   std::vector<Face> faces;
-  Index vertices = 0;  // fixed once the pipeline exists
+  Index vertices = 0;  // fixed once the mesh exists
   std::optional<TriMesh> mesh;
-  std::unique_ptr<CcdPipeline> pipeline;
+  std::vector<ccdlab::Body> bodies;  // the given ones, or one self-colliding cloth
+  std::unique_ptr<CcdPipeline> pipeline;       // step, earliest_toi
+  std::unique_ptr<ProximityQuery> proximity;   // proximity at its d̂
+  std::unique_ptr<CcdPipeline> step_size;      // active_set_and_step at its separation
+  double separation = -1;
 
-  /// Builds the mesh (which validates the faces) and the pipeline; no bodies: one self-colliding mesh.
-  void start(Index vertex_count, std::vector<ccdlab::Body> bodies) {
+  /// Builds the mesh (which validates the faces) and the CCD pipeline; no bodies: one self-colliding mesh.
+  void start(Index vertex_count, std::vector<ccdlab::Body> given) {
     vertices = vertex_count;
     mesh.emplace(vertex_count, faces);
-    if (bodies.empty()) bodies = single_cloth_body(*mesh);
-    pipeline = std::make_unique<CcdPipeline>(*mesh, std::move(bodies), make_strategies(config, builtin_registries(), option_name));
+    bodies = given.empty() ? single_cloth_body(*mesh) : std::move(given);
+    pipeline = std::make_unique<CcdPipeline>(*mesh, bodies, make_strategies(config, builtin_registries(), option_name));
   }
-  /// Checks a step's positions (and fixes the vertex count on the first): the frames as the pipeline takes them.
+  /// Checks a frame's size (fixing the vertex count on the first call) and its positions.
+  Positions frame(std::span<const Point> x, const char* name) {
+    if (!pipeline) start(Index(x.size()), {});  // validates the faces against the vertex count (TriMesh)
+    if (x.size() != std::size_t(vertices))
+      fail("{} has {} positions, but this detector's mesh has {} vertices (fixed by its first call or its bodies)", name,
+           x.size(), vertices);
+    return positions_of(x, name);
+  }
+  /// The two frames of a step, as the pipeline takes them.
   std::pair<Positions, Positions> frames(std::span<const Point> x0, std::span<const Point> x1) {
     if (x0.size() != x1.size()) fail("x0 has {} positions, x1 has {}", x0.size(), x1.size());
-    if (!pipeline) start(Index(x0.size()), {});  // validates the faces against the vertex count (TriMesh)
-    if (x0.size() != std::size_t(vertices))
-      fail("{} positions, but this detector's mesh has {} vertices (fixed by its first step or its bodies)", x0.size(), vertices);
-    return {positions_of(x0, "x0"), positions_of(x1, "x1")};
+    return {frame(x0, "x0"), frame(x1, "x1")};
+  }
+  /// The pairs closer than dhat at x, by the proximity query kept for that d̂.
+  Proximities near(const Positions& x, double dhat) {
+    if (!(dhat > 0) || !std::isfinite(dhat)) fail("dhat = {}: expected a finite distance > 0", dhat);
+    if (!proximity || proximity->dhat() != dhat) {
+      PipelineConfig c = config;
+      c.normal_cones = false;
+      proximity = std::make_unique<ProximityQuery>(*mesh, bodies, make_strategies(c, builtin_registries(), option_name), dhat);
+    }
+    Proximities out;
+    for (const ProximityPair& p : proximity->query(x).pairs) {
+      const Proximity q{{p.vertices[0], p.vertices[1], p.vertices[2], p.vertices[3]}, p.distance, to_string(p.type), p.coords};
+      (p.kind == ContactKind::vf ? out.vf : out.ee).push_back(q);
+    }
+    return out;
+  }
+  /// The earliest time any pair comes within `s` on the step x0 → x1, by `conservative:thickness=s`.
+  double first_approach(const Positions& x0, const Positions& x1, double s) {
+    if (!(s >= 0) || !std::isfinite(s)) fail("separation = {}: expected a finite distance >= 0", s);
+    if (!step_size || separation != s) {
+      PipelineConfig c = config;
+      c.normal_cones = false;
+      c.tester = parse_strategy_spec(fmt::format("conservative:thickness={}", s), "separation: ", "tester",
+                                     builtin_registries().testers, kDefaultTester);
+      step_size = std::make_unique<CcdPipeline>(*mesh, bodies, make_strategies(c, builtin_registries(), option_name));
+      separation = s;
+    }
+    return step_size->earliest_toi(x0, x1);
   }
 };
 
@@ -208,6 +248,21 @@ double Detector::earliest_toi(std::span<const Point> x0, std::span<const Point> 
   return named("ccdlab::Detector::earliest_toi", [&] {
     const auto [p0, p1] = impl_->frames(x0, x1);
     return impl_->pipeline->earliest_toi(p0, p1);
+  });
+}
+
+Detector::Proximities Detector::proximity(std::span<const Point> x, double dhat) {
+  return named("ccdlab::Detector::proximity", [&] { return impl_->near(impl_->frame(x, "x"), dhat); });
+}
+
+Detector::ActiveSetAndStep Detector::active_set_and_step(std::span<const Point> x0, std::span<const Point> x1, double dhat,
+                                                         double separation) {
+  return named("ccdlab::Detector::active_set_and_step", [&] {
+    const auto [p0, p1] = impl_->frames(x0, x1);
+    ActiveSetAndStep out;
+    out.active = impl_->near(p0, dhat);
+    out.step_size = impl_->first_approach(p0, p1, separation);
+    return out;
   });
 }
 

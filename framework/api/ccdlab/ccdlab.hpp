@@ -1,9 +1,11 @@
 #pragma once
-// ccdlab's C++ API: continuous collision detection between triangles moving linearly over a time step, for
-// one deforming mesh or several bodies (cloth and obstacles). Guide and example: docs/embedding.md, examples/.
+// ccdlab's C++ API: continuous collision detection between triangles moving linearly over a time step, and the
+// pairs closer than a distance at one set of positions (a barrier solver's active set), for one deforming mesh or
+// several bodies (cloth and obstacles). Guide and example: docs/embedding.md, docs/proximity.md, examples/.
 //
 //   ccdlab::Detector detector(faces, ccdlab::Options::from_yaml("scheduler: phc\nthreads: 4"));
-//   ccdlab::Detector::Contacts c = detector.step(x0, x1);  // every VF / EE contact of the step
+//   ccdlab::Detector::Contacts c = detector.step(x0, x1);              // every VF / EE contact of the step
+//   ccdlab::Detector::Proximities near = detector.proximity(x, dhat);  // every VF / EE pair closer than dhat
 //
 // The topology is fixed when the Detector is made; its BVH is built on the first step and refit on every later
 // one. The API never prints and never exits the process: every failure is a ccdlab::Error (ccdlab/error.hpp)
@@ -114,6 +116,39 @@ class Detector {
   /// so far. With `conservative` or `exact` it is never later than the true earliest contact. For a
   /// collision-free step size: move by a fraction of it.
   [[nodiscard]] double earliest_toi(std::span<const Point> x0, std::span<const Point> x1);
+
+  /// A vertex–face or edge–edge pair closer than d̂: its vertex ids (as a Contact's), its distance, the type of its
+  /// closest features — "p_t" (inside the face), "p_e0" / "p_e1" / "p_e2" (edge (f0, f1) / (f1, f2) / (f2, f0)),
+  /// "p_t0" / "p_t1" / "p_t2" (a corner); "ea_eb" (inside both edges), "ea0_eb" … "ea_eb1" (an end of one edge),
+  /// "ea0_eb0" … "ea1_eb1" (two ends) — and their coordinates (VF: barycentric weights of f1, f2; EE: parameters
+  /// along edge a, edge b).
+  struct Proximity {
+    std::array<int, 4> vertices;
+    double distance;
+    std::string_view type;  ///< one of the static names above
+    std::array<double, 2> coords;
+  };
+  /// Pairs in the order of their features' ids, the same for every scheduler and thread count.
+  struct Proximities {
+    std::vector<Proximity> vf;
+    std::vector<Proximity> ee;
+  };
+
+  /// Every non-adjacent vertex–face and edge–edge pair (of bodies that collide, as for step()) whose exact distance at
+  /// positions x is below dhat > 0: none missed, none farther reported (decided exactly; docs/proximity.md). Its
+  /// hierarchy is built on the first call with a given dhat and refit on later ones; a new dhat builds anew.
+  [[nodiscard]] Proximities proximity(std::span<const Point> x, double dhat);
+
+  /// What a barrier solver's line search asks at each iterate: the active set at x0 (proximity(x0, dhat)) and the
+  /// collision-free step size from x0 towards x1 — the largest fraction t of the step such that no pair comes closer
+  /// than `separation` while the vertices move linearly to x0 + t (x1 − x0), 1.0 when none does (the earliest time
+  /// of `conservative:thickness=separation`: never later than the true one).
+  struct ActiveSetAndStep {
+    Proximities active;
+    double step_size;
+  };
+  [[nodiscard]] ActiveSetAndStep active_set_and_step(std::span<const Point> x0, std::span<const Point> x1, double dhat,
+                                                     double separation);
 
   /// The options in effect, every default filled in (the resolved strategy parameters as YAML).
   [[nodiscard]] std::string resolved_options() const;

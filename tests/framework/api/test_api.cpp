@@ -10,6 +10,7 @@
 #include "ccdlab/ccdlab.hpp"
 #include "framework/config/pipeline_config.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
+#include "framework/pipeline/proximity_query.hpp"
 #include "strategies/registry.hpp"
 #include "support/test_meshes.hpp"
 
@@ -158,6 +159,71 @@ TEST(Api, BodiesWithAnObstacle) {
   EXPECT_NE(error_of([&] { (void)d.step(x0, std::vector<Point>(x1.begin(), x1.end() - 1)); }).find("ccdlab::Detector::step"), std::string::npos);
   Detector::Body bad{{{0, 1, 5}}, 3, false, true, "sheet"};
   EXPECT_NE(error_of([&] { Detector e(std::vector<Detector::Body>{bad}); }).find("sheet: faces[0]"), std::string::npos);
+}
+
+TEST(Api, ProximityIsTheQuerysForEveryScheduler) {
+  const MeshData g = test::grid(16, 16);
+  std::mt19937 rng(4);
+  const Positions x = test::crumple(g.positions, rng, 0.02);
+  std::vector<Triangle> faces;
+  for (const Face& f : g.faces) faces.push_back({f[0], f[1], f[2]});
+  const TriMesh mesh(Index(g.positions.size()), g.faces);
+  ProximityQuery reference(mesh, single_cloth_body(mesh), contact_strategies(18, "sequential", 1, 0.0), 0.03);
+  const ProximityResult want = reference.query(x);
+  ASSERT_GT(want.pairs.size(), 20u);
+  for (const char* scheduler : {"sequential", "phc", "front", "static"}) {
+    Options o;
+    o.scheduler = scheduler, o.threads = 2;
+    Detector d(faces, o);
+    for (int call = 0; call < 2; ++call) {
+      const Detector::Proximities got = d.proximity(points(x), 0.03);
+      ASSERT_EQ(got.vf.size() + got.ee.size(), want.pairs.size()) << scheduler;
+      std::size_t vf = 0, ee = 0;
+      for (const ProximityPair& p : want.pairs) {
+        const Detector::Proximity& k = p.kind == ContactKind::vf ? got.vf[vf++] : got.ee[ee++];
+        EXPECT_EQ(k.vertices[0], p.vertices[0]);
+        EXPECT_EQ(k.vertices[3], p.vertices[3]);
+        EXPECT_EQ(k.distance, p.distance);
+        EXPECT_EQ(k.type, to_string(p.type));
+        EXPECT_LT(k.distance, 0.03 * (1 + 1e-9));
+      }
+    }
+    EXPECT_TRUE(d.proximity(points(x), 1e-9).vf.empty()) << "a new dhat: a new query";
+  }
+  Detector d(faces);
+  EXPECT_NE(error_of([&] { (void)d.proximity(points(x), 0); }).find("ccdlab::Detector::proximity: dhat = 0"), std::string::npos);
+  EXPECT_NE(error_of([&] { (void)d.proximity(points(x), std::nan("")); }).find("dhat = nan"), std::string::npos);
+  EXPECT_NE(error_of([&] { (void)d.proximity({points(x).data(), 5}, 0.1); }).find("x has 5 positions"), std::string::npos);
+}
+
+TEST(Api, ActiveSetAndStepKeepTheSeparation) {
+  // A sheet 0.1 above a floor sheet, moving 0.2 down: with separation 0.01 it may go about (0.1 − 0.01) / 0.2 of
+  // the step (never more); there it is still at least 0.01 from the floor, a little farther it is not.
+  const MeshData g = test::grid(6, 6);
+  std::vector<Triangle> tri;
+  for (const Face& f : g.faces) tri.push_back({f[0], f[1], f[2]});
+  const int n = int(g.positions.size());
+  const std::vector<Detector::Body> bodies{{tri, n, false, false, "sheet"}, {tri, n, true, false, "floor"}};
+  Detector d(bodies);
+  std::vector<Point> x0, x1;
+  for (const Vec3& p : g.positions) x0.push_back({p.x(), p.y(), 0.1}), x1.push_back({p.x(), p.y(), -0.1});
+  for (const Vec3& p : g.positions) x0.push_back({p.x() - 0.05, p.y() - 0.05, 0}), x1.push_back({p.x() - 0.05, p.y() - 0.05, 0});
+  const Detector::ActiveSetAndStep r = d.active_set_and_step(x0, x1, 0.15, 0.01);
+  EXPECT_GT(r.active.vf.size() + r.active.ee.size(), 50u) << "the sheet is 0.1 above the floor, within 0.15";
+  EXPECT_LE(r.step_size, 0.45);
+  EXPECT_GT(r.step_size, 0.44);
+  const auto at = [&](double t) {
+    std::vector<Point> x = x0;
+    for (std::size_t v = 0; v < x.size(); ++v)
+      for (int i = 0; i < 3; ++i) x[v][i] += t * (x1[v][i] - x0[v][i]);
+    return x;
+  };
+  const Detector::Proximities there = d.proximity(at(r.step_size), 0.01);
+  EXPECT_EQ(there.vf.size() + there.ee.size(), 0u);
+  const Detector::Proximities beyond = d.proximity(at(r.step_size + 0.01), 0.01);
+  EXPECT_GT(beyond.vf.size() + beyond.ee.size(), 0u);
+  EXPECT_EQ(d.active_set_and_step(x0, x0, 0.15, 0.01).step_size, 1.0) << "no motion: the whole step";
+  EXPECT_NE(error_of([&] { (void)d.active_set_and_step(x0, x1, 0.15, -1); }).find("separation = -1"), std::string::npos);
 }
 
 TEST(Api, BadStepsAreRefusedNamingTheCall) {
