@@ -27,7 +27,8 @@ StrategyChoice choose(const R& registry, const std::string& option, const std::s
   return {name, e->defaults()};
 }
 
-/// How `ccdlab step` spells each setting in messages: its flag.
+}  // namespace
+
 std::string flag_of(std::string_view key) {
   if (key == "bv.width") return "--bv-width";
   if (key == "bv.end_boxes") return "--end-boxes";
@@ -38,9 +39,7 @@ std::string flag_of(std::string_view key) {
   return "--" + flag;
 }
 
-}  // namespace
-
-int step_command(const StepOptions& o) {
+PipelineConfig pipeline_config(const PipelineFlags& o) {
   PipelineConfig c;
   c.k = o.k, c.width = o.width, c.threads = o.threads;
   c.end_boxes = kEndBoxModes.parse(o.end_boxes, "--end-boxes");
@@ -52,7 +51,11 @@ int step_command(const StepOptions& o) {
   c.hierarchy = choose(builder_registry(), "hierarchy", o.hierarchy);
   c.scheduler = choose(scheduler_registry(), "scheduler", o.scheduler);
   c.tester = parse_strategy_spec(o.tester, "--tester ", "tester", tester_registry(), kDefaultTester);
-  PipelineStrategies s = make_strategies(c, builder_registry(), scheduler_registry(), tester_registry(), flag_of);
+  return c;
+}
+
+int step_command(const StepOptions& o) {
+  PipelineStrategies s = make_strategies(pipeline_config(o), builder_registry(), scheduler_registry(), tester_registry(), flag_of);
   const EndBoxMode end_boxes = s.end_boxes;
 
   MeshData m0 = read_mesh(o.mesh_t0);

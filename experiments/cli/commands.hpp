@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "framework/config/experiment.hpp"
+#include "framework/config/pipeline_config.hpp"
 #include "framework/hierarchy/wide_bvh.hpp"
 
 namespace ccdlab::cli {
@@ -53,9 +54,9 @@ struct ExportOptions {
 };
 int export_command(const ExportOptions& o);
 
-/// The pipeline's settings as flags, their defaults those of PipelineSettings (pipeline_settings.hpp).
-struct StepOptions {
-  std::string mesh_t0, mesh_t1;
+/// The pipeline's settings as flags (`step`, `proximity`), their defaults those of PipelineSettings
+/// (pipeline_settings.hpp).
+struct PipelineFlags {
   int k = PipelineSettings{}.k;
   int width = PipelineSettings{}.width;
   std::string end_boxes{to_string(PipelineSettings{}.end_boxes)};  ///< bv.end_boxes (kEndBoxModes)
@@ -68,12 +69,33 @@ struct StepOptions {
   std::string memory_limit = kDefaultMemoryLimit;
   double candidate_limit = kDefaultCandidateLimit;
   double time_limit = 0;
+};
+/// The flags as a pipeline's configuration, each checked as a YAML key is, spelled as its flag in messages.
+PipelineConfig pipeline_config(const PipelineFlags& f);
+/// How the CLI spells a setting in messages: its flag (bv.width → --bv-width).
+std::string flag_of(std::string_view key);
+
+struct StepOptions : PipelineFlags {
+  std::string mesh_t0, mesh_t1;
   bool progress = true;  ///< a progress line on stderr while a long step runs (when stderr is a terminal)
   std::string contacts_csv;
   bool json = false;
   bool earliest = false;  ///< only the earliest time of contact (CcdPipeline::earliest_toi)
 };
 int step_command(const StepOptions& o);
+
+/// `ccdlab proximity`: the pairs closer than dhat in one mesh file (framework/pipeline/proximity_query.hpp); the
+/// pipeline's flags less --tester.
+struct ProximityOptions : PipelineFlags {
+  std::string mesh;
+  double dhat = 0;
+  bool relative = false;  ///< dhat is a fraction of the mesh's bounding-box diagonal
+  int repeat = 1;         ///< queries on the same positions: the first builds the hierarchy, the others refit it
+  bool progress = true;
+  std::string pairs_csv;
+  bool json = false;
+};
+int proximity_command(const ProximityOptions& o);
 
 struct BenchOptions {
   std::string config;

@@ -1,4 +1,5 @@
-// ccdlab: command-line entry point. Subcommands: run, step, bench, validate, list, info (see README.md).
+// ccdlab: command-line entry point. Subcommands: run, sweep, step, proximity, bench, simulate, export, validate, list, info
+// (see README.md and docs/cli.md).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -23,6 +24,29 @@ constexpr int kInternalError = 3;
 int user_error(std::string_view message) {
   fmt::print(stderr, "ccdlab: error: {}\n", message);
   return kUserError;
+}
+
+/// The pipeline's settings as flags of `cmd` (step, proximity); --tester only where the command takes one.
+void add_pipeline_flags(CLI::App* cmd, ccdlab::cli::PipelineFlags& f, bool tester) {
+  cmd->add_option("--k", f.k, fmt::format("k-DOP: {}", ccdlab::kKdopKs))->capture_default_str();
+  cmd->add_option("--bv-width", f.width, "BVH width the traversal reads: 2 (binary) or 4")->capture_default_str();
+  cmd->add_flag("--end-boxes{on}", f.end_boxes,
+                "--end-boxes[=on|off|auto]: also drop node pairs apart on x, y or z at both ends of the step "
+                "(bv.end_boxes; auto, the default, measures them first: a one-step run does not test them)");
+  cmd->add_option("--scheduler", f.scheduler, "traversal scheduler")->capture_default_str();
+  cmd->add_option("--hierarchy", f.hierarchy, "hierarchy builder")->capture_default_str();
+  cmd->add_option("--threads", f.threads, "threads")->capture_default_str();
+  if (tester) cmd->add_option("--tester", f.tester, "primitive tester, e.g. conservative:delta=1e-4")->capture_default_str();
+  cmd->add_option("--narrow", f.narrow, "narrow phase: batched (SIMD culling stages) or scalar")
+      ->check(CLI::IsMember(ccdlab::kNarrowModes.names()))->capture_default_str();
+  cmd->add_option("--representative", f.representative, "representative rule: first_free or fixed (owners)")
+      ->check(CLI::IsMember(ccdlab::kRepresentativeRules.names()))->capture_default_str();
+  cmd->add_option("--memory-limit", f.memory_limit, "resident memory the step may use: 8GiB, 60%, none (above the "
+                  "predicted need it streams candidates to the narrow phase)")->capture_default_str();
+  cmd->add_option("--candidate-limit", f.candidate_limit, "refuse a step estimated to find more candidate triangle pairs "
+                  "per triangle than this (a thickness in the wrong unit); 0 = no limit")->capture_default_str();
+  cmd->add_option("--time-limit", f.time_limit, "seconds the step may run: past them it stops, exit 2; 0 = no limit")
+      ->capture_default_str();
 }
 
 }  // namespace
@@ -66,31 +90,27 @@ int main(int argc, char** argv) {
   auto* step_cmd = app.add_subcommand("step", "one CCD step between two mesh files (PLY or OBJ)");
   step_cmd->add_option("t0", step.mesh_t0, "mesh at the start of the step")->required();
   step_cmd->add_option("t1", step.mesh_t1, "mesh at the end of the step (same topology)")->required();
-  step_cmd->add_option("--k", step.k, fmt::format("k-DOP: {}", ccdlab::kKdopKs))->capture_default_str();
-  step_cmd->add_option("--bv-width", step.width, "BVH width the traversal reads: 2 (binary) or 4")->capture_default_str();
-  step_cmd->add_flag("--end-boxes{on}", step.end_boxes,
-                     "--end-boxes[=on|off|auto]: also drop node pairs apart on x, y or z at both ends of the step "
-                     "(bv.end_boxes; auto, the default, measures them first: a one-step run does not test them)");
-  step_cmd->add_option("--scheduler", step.scheduler, "traversal scheduler")->capture_default_str();
-  step_cmd->add_option("--hierarchy", step.hierarchy, "hierarchy builder")->capture_default_str();
-  step_cmd->add_option("--threads", step.threads, "threads")->capture_default_str();
-  step_cmd->add_option("--tester", step.tester, "primitive tester, e.g. conservative:delta=1e-4")->capture_default_str();
-  step_cmd->add_option("--narrow", step.narrow, "narrow phase: batched (SIMD culling stages) or scalar")
-      ->check(CLI::IsMember(ccdlab::kNarrowModes.names()))->capture_default_str();
-  step_cmd->add_option("--representative", step.representative, "representative rule: first_free or fixed (owners)")
-      ->check(CLI::IsMember(ccdlab::kRepresentativeRules.names()))->capture_default_str();
-  step_cmd->add_option("--memory-limit", step.memory_limit, "resident memory the step may use: 8GiB, 60%, none (above the "
-                       "predicted need it streams candidates to the narrow phase)")->capture_default_str();
-  step_cmd->add_option("--candidate-limit", step.candidate_limit, "refuse a step estimated to find more candidate "
-                       "triangle pairs per triangle than this (a thickness in the wrong unit); 0 = no limit")->capture_default_str();
-  step_cmd->add_option("--time-limit", step.time_limit, "seconds the step may run: past them it stops, exit 2; 0 = no "
-                       "limit")->capture_default_str();
+  add_pipeline_flags(step_cmd, step, true);
   bool step_no_progress = false;
   step_cmd->add_flag("--no-progress", step_no_progress, "no progress line on stderr while a long step runs");
   step_cmd->add_option("--contacts", step.contacts_csv, "write contacts to this CSV (kind,a,b,c,d,toi,u,v,nx,ny,nz)");
   step_cmd->add_flag("--json", step.json, "print JSON instead of the table");
   step_cmd->add_flag("--earliest", step.earliest, "only the earliest time of contact (1 when none; JSON: earliest_toi), "
                      "skipping the pairs that cannot beat the best time found");
+
+  ProximityOptions proximity;
+  auto* proximity_cmd = app.add_subcommand("proximity", "every vertex-face and edge-edge pair closer than --dhat in one "
+                                           "mesh file: distance and closest-feature type (a barrier solver's active set)");
+  proximity_cmd->add_option("mesh", proximity.mesh, "mesh file (PLY or OBJ)")->required();
+  proximity_cmd->add_option("--dhat", proximity.dhat, "the distance: pairs closer than it are reported")->required();
+  proximity_cmd->add_flag("--relative", proximity.relative, "--dhat is a fraction of the mesh's bounding-box diagonal");
+  add_pipeline_flags(proximity_cmd, proximity, false);
+  proximity_cmd->add_option("--repeat", proximity.repeat, "queries on the same positions (the first builds the hierarchy, "
+                            "the others refit it): ms of the first and median of the others")->capture_default_str();
+  bool proximity_no_progress = false;
+  proximity_cmd->add_flag("--no-progress", proximity_no_progress, "no progress line on stderr while a long query runs");
+  proximity_cmd->add_option("--pairs", proximity.pairs_csv, "write the pairs to this CSV (kind,a,b,c,d,distance,type,u,v)");
+  proximity_cmd->add_flag("--json", proximity.json, "print JSON instead of the summary");
 
   BenchOptions bench;
   bool bench_no_progress = false;
@@ -176,6 +196,10 @@ int main(int argc, char** argv) {
     if (*step_cmd) {
       step.progress = !step_no_progress;
       return step_command(step);
+    }
+    if (*proximity_cmd) {
+      proximity.progress = !proximity_no_progress;
+      return proximity_command(proximity);
     }
     if (*simulate_cmd) {
       simulate.progress = !simulate_no_progress;
