@@ -173,7 +173,7 @@ void CcdPipeline::refuse_exploding_work(const Positions& x_t0, const Positions& 
   const double per_face = e.per_face();
   fail("step: about {:.2g} candidate triangle pairs expected ({} per triangle of {}, estimated from {} sampled "
        "triangles), above candidate_limit = {:g} per triangle: {} To run it anyway, raise candidate_limit "
-       "(ccdlab step: --candidate-limit; 0 = no limit).",
+       "(--candidate-limit on the command line; 0 = no limit).",
        e.candidates, per_face >= 100 ? fmt::format("{:.0f}", per_face) : fmt::format("{:.2g}", per_face), e.faces, e.sampled, limit,
        explain_work(mesh_, x_t0, x_t1, strategies_.tester->thickness(), strategies_.tester->thickness_name()));
 }

@@ -1,6 +1,9 @@
 #include "framework/pipeline/proximity_query.hpp"
 
+#include <string_view>
 #include <utility>
+
+#include "framework/util/error.hpp"
 
 namespace ccdlab {
 namespace {
@@ -18,7 +21,13 @@ ProximityQuery::ProximityQuery(const TriMesh& mesh, std::vector<Body> bodies, Pi
 
 ProximityResult ProximityQuery::query(const Positions& x) {
   ProximityResult r;
-  r.step = pipeline_.step(x, x);
+  try {
+    r.step = pipeline_.step(x, x);
+  } catch (const Error& e) {  // the pipeline's refusals name its step; here it is this query
+    const std::string_view m = e.what();
+    if (m.starts_with("step: ")) throw Error(fmt::format("proximity query: {}", m.substr(6)));
+    throw;
+  }
   r.hash = contact_set_hash(r.step.contacts);
   r.pairs.reserve(r.step.contacts.size());
   for (const Contact& c : r.step.contacts) r.pairs.push_back(describe_proximity(c, x));
