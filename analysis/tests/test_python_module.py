@@ -1,16 +1,15 @@
-"""pytest for the ccdlab Python module (build/python): answers, options and errors on meshes made here, and the
-same contacts (ids, times, coordinates, normals) as the CLI on the real cloth-funnel step (skipped where ../shared/data is absent)."""
+"""pytest for the ccdlab Python package (build/python/ccdlab, or the installed one: conftest.py): answers, options and
+errors on meshes made here, and the same contacts (ids, times, coordinates, normals) as the CLI on the real
+cloth-funnel step (skipped where ../shared/data is absent)."""
 import csv
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "build" / "python"))
-ccdlab = pytest.importorskip("ccdlab", reason="the Python module is not built (build/python)")
+ccdlab = pytest.importorskip("ccdlab", reason="the Python package is neither built (build/python) nor installed")
 FUNNEL = ROOT.parent / "shared" / "data" / "meshes" / "cloth-funnel"
 
 

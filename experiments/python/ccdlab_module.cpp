@@ -1,5 +1,6 @@
-// The `ccdlab` Python module (pybind11; built into build/python/): one CCD step, or a sequence of steps, on
-// NumPy arrays, with the strategies chosen by name and parameters as in YAML.
+// The compiled part of the `ccdlab` Python package (pybind11; built into build/python/ccdlab/, re-exported by
+// python/ccdlab/__init__.py): CCD steps and proximity queries on NumPy arrays, with the strategies chosen by name
+// and parameters as in YAML.
 //
 //   import ccdlab
 //   r = ccdlab.step(x0, x1, faces, k=18, scheduler="phc", threads=2, tester="conservative")
@@ -7,6 +8,9 @@
 //   r["ee"]   (M×4 int: a0, a1, b0, b1)   r["ee_toi"] (M)   r["ee_coords"] (M×2: parameters on a, b)
 //   r["vf_normal"], r["ee_normal"] (unit normals at the time of contact), r["hash"], r["counters"], r["ms"]
 //   t = ccdlab.earliest_toi(x0, x1, faces, tester="exact")   (the step's earliest time of contact, 1.0 if none)
+//   p = ccdlab.proximity(x, faces, dhat)   (every VF / EE pair closer than dhat: p["vf"], p["vf_distance"],
+//       p["vf_type"] ("p_t", "p_e0", …), p["vf_coords"], the same for ee; docs/proximity.md)
+//   a = ccdlab.active_set_and_step(x0, x1, faces, dhat, separation)   (proximity at x0, and a["step_size"])
 //   rows = ccdlab.validate(["../shared/data/ccd-queries", "hard-cases"], testers=["float", "exact"])
 //
 // Rows are sorted by feature identity, like the CLI's contacts CSV (same vertex ids, same order).
@@ -24,6 +28,7 @@
 #include "framework/config/strategy_spec.hpp"
 #include "framework/pipeline/bodies.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
+#include "framework/pipeline/proximity_query.hpp"
 #include "framework/queries/evaluate.hpp"
 #include "framework/queries/hard_cases.hpp"
 #include "framework/util/error.hpp"
@@ -31,6 +36,7 @@
 #include "strategies/testers/exact_tester.hpp"
 
 namespace py = pybind11;
+using namespace pybind11::literals;
 
 namespace ccdlab {
 namespace {
@@ -229,6 +235,88 @@ py::dict result_dict(const StepResult& r, const Positions& x0, const Positions& 
   return d;
 }
 
+/// A proximity query's pairs as NumPy arrays, split by kind (as step's contacts).
+py::dict proximity_dict(const ProximityResult& r) {
+  py::dict d;
+  for (const ContactKind kind : {ContactKind::vf, ContactKind::ee}) {
+    std::vector<const ProximityPair*> rows;
+    for (const ProximityPair& p : r.pairs)
+      if (p.kind == kind) rows.push_back(&p);
+    const auto n = py::ssize_t(rows.size());
+    py::array_t<std::int64_t> ids({n, py::ssize_t(4)});
+    py::array_t<double> distance(n), coords({n, py::ssize_t(2)});
+    py::list types;
+    auto idr = ids.mutable_unchecked<2>();
+    auto dr = distance.mutable_unchecked<1>();
+    auto cr = coords.mutable_unchecked<2>();
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const ProximityPair& p = *rows[std::size_t(i)];
+      for (int k = 0; k < 4; ++k) idr(i, k) = p.vertices[std::size_t(k)];
+      dr(i) = p.distance;
+      cr(i, 0) = p.coords[0], cr(i, 1) = p.coords[1];
+      types.append(py::str(std::string(to_string(p.type))));
+    }
+    const std::string name(to_string(kind));
+    d[py::str(name)] = ids;
+    d[py::str(name + "_distance")] = distance;
+    d[py::str(name + "_type")] = py::module_::import("numpy").attr("array")(types, "dtype"_a = "U7");
+    d[py::str(name + "_coords")] = coords;
+  }
+  const StepCounters& k = r.step.counters;
+  const StepTimings& t = r.step.timings;
+  py::dict counters, ms;
+  for (const auto& [name, value] : {std::pair{"bv_tests", k.bv_tests}, {"candidate_pairs", k.candidate_pairs},
+                                    {"vf_tests", k.vf_tests}, {"ee_tests", k.ee_tests}, {"orphan_tests", k.orphan_tests},
+                                    {"decided_in_rationals", k.tests_fallback}})
+    counters[name] = value;
+  for (const auto& [name, value] : {std::pair{"total", t.total_ms}, {"build", t.build_ms}, {"refit", t.refit_ms},
+                                    {"traverse", t.traverse_ms}, {"narrow", t.narrow_ms}, {"orphans", t.orphan_ms}})
+    ms[name] = value;
+  d["hash"] = fmt::format("{:016x}", r.hash);
+  d["counters"] = counters;
+  d["ms"] = ms;
+  return d;
+}
+
+/// The proximity query at x0 (and, with x1, the step size for `separation`): one mesh, options as step()'s less
+/// `tester` (the query's test is its own, exact).
+py::dict near_pairs(const Points& x0, const Points* x1, const Triangles& faces, double dhat, double separation,
+                    const py::kwargs& options, const char* call) {
+  if (options.contains("tester")) fail("{}: tester: not an option here (the proximity test is exact, its own)", call);
+  if (!(dhat > 0) || !std::isfinite(dhat)) fail("{}: dhat = {}: expected a finite distance > 0", call, dhat);
+  const Positions p0 = to_positions(x0, call, x1 ? "x0" : "x");
+  Positions p1;
+  if (x1) {
+    if (!(separation >= 0) || !std::isfinite(separation))
+      fail("{}: separation = {}: expected a finite distance >= 0", call, separation);
+    p1 = to_positions(*x1, call, "x1");
+    if (p1.size() != p0.size()) fail("{}: x1 has {} vertices, x0 has {}", call, p1.size(), p0.size());
+  }
+  const TriMesh mesh = to_mesh(p0.size(), faces, call);
+  ProximityQuery query(mesh, single_cloth_body(mesh), strategies_from(options, call), dhat);
+  std::unique_ptr<CcdPipeline> approach;  // the step size's: conservative at thickness `separation`
+  if (x1) {
+    PipelineStrategies s = strategies_from(options, call);
+    s.normal_cones = false;
+    s.tester = tester_registry().make(parse_strategy_spec(fmt::format("conservative:thickness={}", separation),
+                                                          fmt::format("{}: separation: ", call), "tester",
+                                                          tester_registry(), kDefaultTester));
+    approach = std::make_unique<CcdPipeline>(mesh, single_cloth_body(mesh), std::move(s));
+  }
+  ProximityResult r;
+  double step_size = 1;
+  try {
+    py::gil_scoped_release release;
+    r = query.query(p0);
+    if (approach) step_size = approach->earliest_toi(p0, p1);
+  } catch (const Error& e) {  // a refusal of the work (d̂, time, memory): named by the call, as the arguments' errors
+    fail("{}: {}", call, e.what());
+  }
+  py::dict d = proximity_dict(r);
+  if (x1) d["step_size"] = step_size;
+  return d;
+}
+
 /// Runs the pipeline over consecutive frames (one BVH, refit each step, as `ccdlab run`).
 py::list run_frames(const std::vector<py::object>& frames, const Triangles& faces, const py::kwargs& options,
                     const char* call = "ccdlab.sequence") {
@@ -291,7 +379,7 @@ py::list validate(const std::vector<std::string>& paths, const std::vector<std::
 }  // namespace
 }  // namespace ccdlab
 
-PYBIND11_MODULE(ccdlab, m) {
+PYBIND11_MODULE(_ccdlab, m) {
   using namespace ccdlab;
   m.doc() = "ccdlab: continuous collision detection for deforming triangle meshes (k-DOP BVHs, BVTT traversal, "
             "exact elementary tests). Options are the YAML strategies by name: k, width, hierarchy, scheduler, "
@@ -321,6 +409,27 @@ PYBIND11_MODULE(ccdlab, m) {
       "The earliest time of contact in [0, 1] of one step (1.0 when none), without solving the pairs that cannot "
       "beat the best time found so far; options as step(). Never later than the truth with tester='conservative' "
       "or 'exact'.");
+  m.def(
+      "proximity",
+      [](const Points& x, const Triangles& faces, double dhat, const py::kwargs& options) {
+        return near_pairs(x, nullptr, faces, dhat, 0, options, "ccdlab.proximity");
+      },
+      py::arg("x"), py::arg("faces"), py::arg("dhat"),
+      "Every non-adjacent vertex-face and edge-edge pair of a self-colliding mesh (positions x N×3, faces F×3) whose "
+      "exact distance is below dhat (none missed, none farther reported). Returns a dict: vf (v, f0, f1, f2) and ee "
+      "(a0, a1, b0, b1) vertex ids, their distance, type (closest features: p_t, p_e0..p_e2, p_t0..p_t2; ea_eb, "
+      "ea0_eb, ..., ea1_eb1) and coords (VF: weights of f1, f2; EE: parameters on a, b), hash, counters, ms. "
+      "Options as step() less tester.");
+  m.def(
+      "active_set_and_step",
+      [](const Points& x0, const Points& x1, const Triangles& faces, double dhat, double separation,
+         const py::kwargs& options) {
+        return near_pairs(x0, &x1, faces, dhat, separation, options, "ccdlab.active_set_and_step");
+      },
+      py::arg("x0"), py::arg("x1"), py::arg("faces"), py::arg("dhat"), py::arg("separation"),
+      "What a barrier solver's line search asks: proximity(x0, faces, dhat), plus step_size: the largest fraction t "
+      "of the step x0 -> x1 such that no pair comes closer than separation before x0 + t (x1 - x0) (1.0 when none; "
+      "never later than the truth).");
   m.def("sequence", [](const py::object& frames, const Triangles& faces, const py::kwargs& options) {
           const char* call = "ccdlab.sequence";
           if (!py::isinstance<py::sequence>(frames) || py::isinstance<py::str>(frames))

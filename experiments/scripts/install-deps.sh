@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev
   libyaml-cpp-dev libbenchmark-dev libgtest-dev libcli11-dev libfmt-dev nlohmann-json3-dev
-  python3 python3-meshio python3-matplotlib python3-numpy python3-pandas python3-scipy python3-pytest
+  python3 python3-venv python3-pip python3-setuptools python3-wheel python3-meshio python3-matplotlib python3-numpy python3-pandas python3-scipy python3-pytest
   libhwy-dev libembree-dev pybind11-dev python3-dev
   clang-14 libomp-14-dev libclang-rt-14-dev libfuzzer-14-dev llvm-14
 )
