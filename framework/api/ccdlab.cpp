@@ -5,6 +5,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <utility>
@@ -129,7 +130,7 @@ struct Detector::Impl {
   std::optional<TriMesh> mesh;
   std::vector<ccdlab::Body> bodies;  // the given ones, or one self-colliding cloth
   std::unique_ptr<CcdPipeline> pipeline;       // step, earliest_toi
-  std::unique_ptr<ProximityQuery> proximity;   // proximity at its d̂
+  std::vector<std::unique_ptr<ProximityQuery>> proximity;  // proximity, one per d̂ asked recently (kProximityQueries)
   std::unique_ptr<CcdPipeline> step_size;      // active_set_and_step at its separation
   double separation = -1;
 
@@ -153,16 +154,21 @@ struct Detector::Impl {
     if (x0.size() != x1.size()) fail("x0 has {} positions, x1 has {}", x0.size(), x1.size());
     return {frame(x0, "x0"), frame(x1, "x1")};
   }
-  /// The pairs closer than dhat at x, by the proximity query kept for that d̂.
+  /// The pairs closer than dhat at x, by the proximity query kept for that d̂ (a solver asks at a few: its barrier's
+  /// d̂ and the separation it checks; the least recently made goes when a new one would be one too many).
+  static constexpr std::size_t kProximityQueries = 4;
   Proximities near(const Positions& x, double dhat) {
     if (!(dhat > 0) || !std::isfinite(dhat)) fail("dhat = {}: expected a finite distance > 0", dhat);
-    if (!proximity || proximity->dhat() != dhat) {
+    auto kept = std::find_if(proximity.begin(), proximity.end(), [dhat](const auto& q) { return q->dhat() == dhat; });
+    if (kept == proximity.end()) {
       PipelineConfig c = config;
       c.normal_cones = false;
-      proximity = std::make_unique<ProximityQuery>(*mesh, bodies, make_strategies(c, builtin_registries(), option_name), dhat);
+      if (proximity.size() == kProximityQueries) proximity.erase(proximity.begin());
+      proximity.push_back(std::make_unique<ProximityQuery>(*mesh, bodies, make_strategies(c, builtin_registries(), option_name), dhat));
+      kept = proximity.end() - 1;
     }
     Proximities out;
-    for (const ProximityPair& p : proximity->query(x).pairs) {
+    for (const ProximityPair& p : (*kept)->query(x).pairs) {
       const Proximity q{{p.vertices[0], p.vertices[1], p.vertices[2], p.vertices[3]}, p.distance, to_string(p.type), p.coords};
       (p.kind == ContactKind::vf ? out.vf : out.ee).push_back(q);
     }

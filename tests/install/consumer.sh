@@ -4,7 +4,8 @@
 # against it with find_package(ccdlab), its contacts equal to the installed CLI's (`ccdlab step --contacts`:
 # the same pairs, times, coordinates and normals) on the shared real steps, or on a small built-in pair of
 # frames where ../shared/data is absent; examples/mass_spring_cloth built the same way and kept collision-free
-# by earliest_toi; and the installed Python module imports and answers.
+# by earliest_toi; examples/barrier_cloth (the proximity query and step size in a barrier solver) ends every frame
+# separated; and the installed Python module imports and answers.
 # Usage: tests/install/consumer.sh [BUILD_DIR]   (default: build, the release preset's)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -92,6 +93,22 @@ t = [float(re.search(r"impact (\S+),", l).group(1)) for l in lines]
 if not z or min(z) < 0 or min(t) >= 1 or z[-1] > 0.05:
     sys.exit("FAIL: mass_spring_cloth: " + " | ".join(lines[-3:]))
 print(f"  mass_spring_cloth: {len(lines)} reports, lowest point {min(z):.5f}, earliest impact {min(t):.4f}")
+PY
+
+# The barrier-solver example: every Newton iteration asks for the active set and the step size; every frame ends
+# with no pair closer than the separation (the example checks it, exit 1 otherwise); the cloth comes to rest on the
+# floor (z = -0.25), not below it.
+cp -r examples/barrier_cloth "$work/barrier"
+cmake -S "$work/barrier" -B "$work/barrier/build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$work/barrier/build" >/dev/null
+"$work/barrier/build/barrier_cloth" 30 > "$work/barrier.txt"
+/usr/bin/python3 - "$work/barrier.txt" <<'PY'
+import re, sys
+text = open(sys.argv[1]).read()
+z = [float(v) for v in re.findall(r"lowest cloth point z = (\S+),", text)]
+if "30 frames, every one separated by at least" not in text or not z or min(z) < -0.25 or z[-1] > -0.2:
+    sys.exit("FAIL: barrier_cloth: " + text[-400:])
+print(f"  barrier_cloth: 30 frames separated, lowest point {min(z):.4f}")
 PY
 
 PYTHONPATH="$prefix/lib/python3/dist-packages" /usr/bin/python3 -c '

@@ -136,7 +136,8 @@ class Detector {
 
   /// Every non-adjacent vertex–face and edge–edge pair (of bodies that collide, as for step()) whose exact distance at
   /// positions x is below dhat > 0: none missed, none farther reported (decided exactly; docs/proximity.md). Its
-  /// hierarchy is built on the first call with a given dhat and refit on later ones; a new dhat builds anew.
+  /// hierarchy is built on the first call with a given dhat and refit on later ones; the queries of the last four
+  /// dhat values are kept.
   [[nodiscard]] Proximities proximity(std::span<const Point> x, double dhat);
 
   /// What a barrier solver's line search asks at each iterate: the active set at x0 (proximity(x0, dhat)) and the
