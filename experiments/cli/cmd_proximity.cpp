@@ -1,12 +1,14 @@
-// `ccdlab proximity MESH --dhat D [--relative] [--k K] [--scheduler S] [--threads N] … [--repeat N]
+// `ccdlab proximity MESH --dhat D [--relative] [--k K] [--scheduler S] [--threads N] … [--repeat N] [--check]
 //  [--pairs OUT.csv] [--json]`: every vertex–face and edge–edge pair of one mesh file (one self-colliding body)
 // closer than d̂, with its distance and closest-feature type (framework/pipeline/proximity_query.hpp).
+#include <chrono>
 #include <map>
 
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/report.hpp"
 #include "experiments/cli/step_progress.hpp"
 #include "framework/mesh/mesh_io.hpp"
+#include "framework/pipeline/brute_force.hpp"
 #include "framework/pipeline/proximity_query.hpp"
 #include "framework/util/error.hpp"
 #include "framework/util/files.hpp"
@@ -55,6 +57,15 @@ int proximity_command(const ProximityOptions& o) {
       line.clear();
     }
   }
+  // The reference, timed as the baseline: the same pairs or exit 1.
+  std::uint64_t reference_hash = 0;
+  double reference_ms = 0;
+  if (o.check) {
+    const auto start = std::chrono::steady_clock::now();
+    reference_hash = contact_set_hash(sweep_proximity(mesh, CollisionRules(mesh, single_cloth_body(mesh)), m.positions, dhat));
+    reference_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  const int rc = o.check && reference_hash != r.hash ? 1 : 0;
   std::size_t vf = 0;
   std::map<std::string_view, std::size_t> types;
   for (const ProximityPair& p : r.pairs) vf += p.kind == ContactKind::vf, ++types[to_string(p.type)];
@@ -80,12 +91,14 @@ int proximity_command(const ProximityOptions& o) {
     j["vertices"] = mesh.num_vertices();
     j["decided_in_rationals"] = r.step.counters.tests_fallback;
     j["query_ms"] = {{"first", first_ms}, {"refit_median", refit_ms.empty() ? nlohmann::json() : nlohmann::json(median(refit_ms))}};
+    if (o.check)
+      j["reference"] = {{"hash", fmt::format("{:016x}", reference_hash)}, {"ms", reference_ms}, {"equal", rc == 0}};
     j["config"] = {{"k", o.k}, {"bv_width", o.width}, {"hierarchy", o.hierarchy}, {"scheduler", o.scheduler},
                    {"threads", o.threads}, {"narrow", {{"mode", o.narrow}, {"representative", o.representative}}},
                    {"memory_limit", o.memory_limit}, {"candidate_limit", o.candidate_limit}, {"time_limit", o.time_limit},
                    {"repeat", o.repeat}, {"simd_target", plane_filter_target()}};
     fmt::print("{}\n", j.dump(2));
-    return 0;
+    return rc;
   }
   fmt::print("ccdlab proximity {}: {} triangles, dhat {:g} ({:.3g} of the bounding-box diagonal), k={} width={} "
              "scheduler={} threads={}\n\n", o.mesh, mesh.num_faces(), dhat, dhat / diagonal, o.k, o.width, o.scheduler,
@@ -99,7 +112,10 @@ int proximity_command(const ProximityOptions& o) {
              r.step.counters.tests_fallback);
   fmt::print("ms: {:.2f} (hierarchy built){}\n", first_ms,
              refit_ms.empty() ? std::string() : fmt::format(", {:.2f} median of {} refit queries", median(refit_ms), refit_ms.size()));
-  return 0;
+  if (o.check)
+    fmt::print("reference (a sweep over boxes, one thread): {:.2f} ms, hash {:016x}: {}\n", reference_ms, reference_hash,
+               rc == 0 ? "the same pairs" : "DIFFERENT PAIRS");
+  return rc;
 }
 
 }  // namespace ccdlab::cli

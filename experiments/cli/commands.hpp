@@ -91,6 +91,7 @@ struct ProximityOptions : PipelineFlags {
   double dhat = 0;
   bool relative = false;  ///< dhat is a fraction of the mesh's bounding-box diagonal
   int repeat = 1;         ///< queries on the same positions: the first builds the hierarchy, the others refit it
+  bool check = false;     ///< also run the reference (sweep_proximity), time it, exit 1 unless the pairs are equal
   bool progress = true;
   std::string pairs_csv;
   bool json = false;

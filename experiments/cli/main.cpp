@@ -107,6 +107,8 @@ int main(int argc, char** argv) {
   add_pipeline_flags(proximity_cmd, proximity, false);
   proximity_cmd->add_option("--repeat", proximity.repeat, "queries on the same positions (the first builds the hierarchy, "
                             "the others refit it): ms of the first and median of the others")->capture_default_str();
+  proximity_cmd->add_flag("--check", proximity.check, "also find the pairs without the hierarchy (a sweep over boxes, the "
+                          "same exact test: the reference and baseline), time it, exit 1 unless both find the same pairs");
   bool proximity_no_progress = false;
   proximity_cmd->add_flag("--no-progress", proximity_no_progress, "no progress line on stderr while a long query runs");
   proximity_cmd->add_option("--pairs", proximity.pairs_csv, "write the pairs to this CSV (kind,a,b,c,d,distance,type,u,v)");

@@ -1,16 +1,16 @@
 // The proximity query on every real frame of ../shared/data/meshes (skipped where absent), at two d̂ (10⁻³ and
-// 5·10⁻⁴ of the frame's bounding-box diagonal), against an independent reference: a sweep over x of the
-// features' axis-aligned boxes grown by d̂ (no BVH, no ownership, no culling stage), every non-adjacent vertex–face
-// and edge–edge pair whose boxes meet decided by the exact test — and, away from d̂, by Ericson's closest points
-// in double. One hash for every scheduler and thread count.
+// 5·10⁻⁴ of the frame's bounding-box diagonal), against an independent reference (sweep_proximity: a sweep over x
+// of the features' axis-aligned boxes grown by d̂, no BVH, no ownership, no culling stage, every pair whose boxes
+// meet decided by the exact test), its pairs checked by Ericson's closest points in double. The reference's hash for
+// every scheduler and thread count.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
-#include <optional>
 #include <set>
 
 #include "framework/mesh/mesh_io.hpp"
+#include "framework/pipeline/brute_force.hpp"
 #include "framework/pipeline/proximity_query.hpp"
 #include "strategies/registry.hpp"
 #include "support/test_meshes.hpp"
@@ -25,67 +25,19 @@ struct Frame {
 
 using Key = std::tuple<ContactKind, std::array<Index, 4>>;
 
-struct Box {
-  Vec3 lo, hi;
-  Index id;
-};
-
-/// Boxes of each face (or edge) of `corners` points, grown by `r`, sorted by lo.x.
-template <class Feature>
-std::vector<Box> boxes(const std::vector<Feature>& features, const Positions& x, double r) {
-  std::vector<Box> out;
-  out.reserve(features.size());
-  for (std::size_t i = 0; i < features.size(); ++i) {
-    Vec3 lo = x[features[i][0]], hi = lo;
-    for (const Index v : features[i]) lo = lo.cwiseMin(x[v]), hi = hi.cwiseMax(x[v]);
-    out.push_back({lo.array() - r, hi.array() + r, Index(i)});
-  }
-  std::sort(out.begin(), out.end(), [](const Box& a, const Box& b) { return a.lo.x() < b.lo.x(); });
-  return out;
-}
-
-bool overlap_yz(const Vec3& lo, const Vec3& hi, const Box& b) {
-  return lo.y() <= b.hi.y() && b.lo.y() <= hi.y() && lo.z() <= b.hi.z() && b.lo.z() <= hi.z();
-}
-
-/// Every pair closer than dhat, found by the sweep and decided by the exact test; pairs clearly nearer or farther
-/// than d̂ in double agree with it.
-std::set<Key> reference(const TriMesh& mesh, const Positions& x, double dhat) {
-  const double r = dhat * (1 + 1e-6);  // boxes a little larger than d̂: a box test never drops a pair at d̂
+/// The reference's pairs (framework/pipeline/brute_force.hpp: a sweep over boxes, the exact test), checked by
+/// Ericson's closest points in double away from d̂: none of them farther than d̂.
+std::set<Key> reference(const TriMesh& mesh, const Positions& x, double dhat, std::uint64_t& hash) {
+  const Contacts pairs = sweep_proximity(mesh, CollisionRules(mesh, single_cloth_body(mesh)), x, dhat);
+  hash = contact_set_hash(pairs);
   std::set<Key> out;
-  const auto decide = [&](ContactKind kind, const std::array<Index, 4>& v) {
-    const bool vf = kind == ContactKind::vf;
-    const DistanceVerdict d = vf ? vertex_face_closer(x[v[0]], x[v[1]], x[v[2]], x[v[3]], dhat)
-                                 : edge_edge_closer(x[v[0]], x[v[1]], x[v[2]], x[v[3]], dhat);
-    const double e = vf ? closest_vertex_face(x[v[0]], x[v[1]], x[v[2]], x[v[3]]).distance
-                        : closest_edge_edge(x[v[0]], x[v[1]], x[v[2]], x[v[3]]).distance;
-    if (e < dhat * (1 - 1e-9)) { EXPECT_TRUE(d.closer) << "double distance " << e; }
-    if (e > dhat * (1 + 1e-9)) { EXPECT_FALSE(d.closer) << "double distance " << e; }
-    if (d.closer) out.insert({kind, v});
-  };
-  // Vertices against faces: the vertices sorted by x, each face's box scanning its x range.
-  std::vector<Index> by_x(mesh.num_vertices());
-  for (Index v = 0; v < mesh.num_vertices(); ++v) by_x[v] = v;
-  std::sort(by_x.begin(), by_x.end(), [&](Index a, Index b) { return x[a].x() < x[b].x(); });
-  for (const Box& f : boxes(mesh.faces(), x, r)) {
-    const Face& t = mesh.faces()[f.id];
-    auto it = std::lower_bound(by_x.begin(), by_x.end(), f.lo.x(), [&](Index v, double lo) { return x[v].x() < lo; });
-    for (; it != by_x.end() && x[*it].x() <= f.hi.x(); ++it) {
-      const Index v = *it;
-      if (v == t[0] || v == t[1] || v == t[2] || !overlap_yz(x[v], x[v], f)) continue;
-      decide(ContactKind::vf, {v, t[0], t[1], t[2]});
-    }
+  for (const Contact& c : pairs) {
+    const auto& v = c.vertices;
+    const double d = c.kind == ContactKind::vf ? closest_vertex_face(x[v[0]], x[v[1]], x[v[2]], x[v[3]]).distance
+                                               : closest_edge_edge(x[v[0]], x[v[1]], x[v[2]], x[v[3]]).distance;
+    EXPECT_LT(d, dhat * (1 + 1e-9));
+    out.insert({c.kind, v});
   }
-  // Edges against edges: sweep and prune over x.
-  const std::vector<Box> e = boxes(mesh.edges(), x, r / 2);
-  for (std::size_t i = 0; i < e.size(); ++i)
-    for (std::size_t j = i + 1; j < e.size() && e[j].lo.x() <= e[i].hi.x(); ++j) {
-      if (!overlap_yz(e[i].lo, e[i].hi, e[j])) continue;
-      const Index a = std::min(e[i].id, e[j].id), b = std::max(e[i].id, e[j].id);
-      const Edge &ea = mesh.edges()[a], &eb = mesh.edges()[b];
-      if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) continue;
-      decide(ContactKind::ee, {ea[0], ea[1], eb[0], eb[1]});
-    }
   return out;
 }
 
@@ -115,9 +67,9 @@ TEST_P(RealProximity, FindsExactlyTheReferencePairsForEverySchedule) {
   if (small) schedules.insert(schedules.end(), {{"front", 2}, {"static", 2}, {"phc", 1}});
   for (const double relative : {1e-3, 5e-4}) {
     const double dhat = relative * diagonal;
-    const std::set<Key> expected = reference(mesh, m.positions, dhat);
+    std::uint64_t expected_hash = 0;
+    const std::set<Key> expected = reference(mesh, m.positions, dhat, expected_hash);
     EXPECT_GT(expected.size(), 1000u) << "frames this dense have many near pairs at " << relative << " of the diagonal";
-    std::optional<std::uint64_t> hash;
     for (const auto& [scheduler, threads] : schedules) {
       ProximityQuery q(mesh, single_cloth_body(mesh), strategies(scheduler, threads), dhat);
       const ProximityResult r = q.query(m.positions);
@@ -126,8 +78,7 @@ TEST_P(RealProximity, FindsExactlyTheReferencePairsForEverySchedule) {
       EXPECT_EQ(got.size(), r.pairs.size()) << "a pair reported twice";
       EXPECT_TRUE(got == expected) << scheduler << " x" << threads << " at " << relative << ": " << got.size()
                                    << " pairs, the reference " << expected.size();
-      if (!hash) hash = r.hash;
-      EXPECT_EQ(r.hash, *hash) << scheduler << " x" << threads;
+      EXPECT_EQ(r.hash, expected_hash) << scheduler << " x" << threads;
     }
   }
 }
