@@ -87,6 +87,7 @@ void compact(FeatureBatch& batch, const std::vector<std::uint8_t>& keep) {
 void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& bounds, bool end_boxes) {
   x_t0_ = &x_t0;
   x_t1_ = &x_t1;
+  motionless_ = &x_t0 == &x_t1;
   bounds_ = &bounds;
   triangle_stage_ = options_.mode == NarrowMode::batched && tester_.cull_reach() && triangle_rule_.runs(steps_);
   triangle_box_pass_ = !end_boxes;
@@ -334,7 +335,16 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   // then sixteenths on what the halves keep, within the halves they left open (split_filter.hpp); both leave
   // each row's open windows, the sixteenths' for stage 4.
   std::size_t kept_vf = 0, rows = 0;
+  // Without motion (the proximity query) every window of the step is the same instant, which stage 2 has already
+  // tested: stage 3 is skipped and stage 4 takes the whole step as one window.
+  const int levels = motionless_ ? 0 : kSplitLevels;
+  if (motionless_) {
+    kept_vf = batch.vf.size(), rows = kept_vf + batch.ee.size();
+    if (compact_now) scratch.keep.assign(rows, 1);  // else: stage 2's flags
+    scratch.open.assign(rows, 1);
+  }
   for (const int levels : {kSplitCoarseLevels, kSplitLevels}) {
+    if (motionless_) break;
     const bool last = levels == kSplitLevels;
     kept_vf = batch.vf.size(), rows = kept_vf + batch.ee.size();
     if (last || compact_now) scratch.keep.assign(rows, 1);  // else: stage 2's flags, which the halves only clear
@@ -356,13 +366,13 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   // Stage 4 on the rows stage 3 kept, in place (same row numbers): the distance on their open windows, in the
   // steps where it pays (ProximityStageRule).
   if (proximity_stage_) {
-    proximity_filter(plane, kept_vf, rows, scratch.open.data(), kSplitLevels, scratch.keep.data(), scratch.proximity);
+    proximity_filter(plane, kept_vf, rows, scratch.open.data(), levels, scratch.keep.data(), scratch.proximity);
     c.proximity_tested += split_kept;
   }
   // Each pair's earliest possible time: the start of its first open window.
   batch.from.resize(rows);
   for (std::size_t i = 0; i < rows; ++i)
-    batch.from[i] = scratch.open[i] ? float(std::countr_zero(scratch.open[i])) / float(1 << kSplitLevels) : 1.0f;
+    batch.from[i] = scratch.open[i] ? float(std::countr_zero(scratch.open[i])) / float(1 << levels) : 1.0f;
   compact(batch, scratch.keep);
   c.proximity_culled += split_kept - batch.vf.size() - batch.ee.size();
   c.proximity_ns += ns_since(t_proximity);  // its compaction and `from` too, which run either way

@@ -106,7 +106,8 @@ class NarrowPhase {
 
   /// Sets the two frames of the step and every vertex's swept 26-DOP over it (stage 1's bounds, updated by
   /// the caller for this step with the tester's thickness: the pipeline's swept volumes). All three must
-  /// outlive the step. `end_boxes`: the traversal tests end boxes in this step, so stage 0 skips its x, y, z
+  /// outlive the step; one Positions passed as both frames is a step without motion (the proximity query), whose
+  /// stage 3 is skipped. `end_boxes`: the traversal tests end boxes in this step, so stage 0 skips its x, y, z
   /// pass (triangle_filter's box_pass).
   void begin_step(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& bounds, bool end_boxes = false);
   /// The step's merged counters: the work they count, with and without stage 0, decides whether it runs in the
@@ -159,6 +160,7 @@ class NarrowPhase {
   const FeatureBounds* bounds_ = nullptr;
   const Positions* x_t0_ = nullptr;
   const Positions* x_t1_ = nullptr;
+  bool motionless_ = false;           ///< x_t0 and x_t1 are one frame (the proximity query): no stage 3 (begin_step)
   bool triangle_stage_ = false;       ///< stage 0 runs in this step (begin_step)
   bool triangle_box_pass_ = true;     ///< … with its x, y, z pass (not in steps that test end boxes)
   FloatFrames float_frames_;          ///< what stage 0 reads, made in begin_step when it runs
