@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "framework/util/error.hpp"
+#include "framework/util/parallel.hpp"
 
 namespace ccdlab {
 namespace {
@@ -29,8 +30,13 @@ ProximityResult ProximityQuery::query(const Positions& x) {
     throw;
   }
   r.hash = contact_set_hash(r.step.contacts);
-  r.pairs.reserve(r.step.contacts.size());
-  for (const Contact& c : r.step.contacts) r.pairs.push_back(describe_proximity(c, x));
+  // Each hit described (its distance and closest features), on the query's threads.
+  const Contacts& hits = r.step.contacts;
+  r.pairs.resize(hits.size());
+  PhaseTrace trace;
+  parallel_chunks(hits.size(), 4096, pipeline_.strategies().threads, trace, [&](std::size_t b, std::size_t e, int) {
+    for (std::size_t i = b; i < e; ++i) r.pairs[i] = describe_proximity(hits[i], x);
+  });
   r.step.contacts = {};
   return r;
 }
