@@ -76,7 +76,7 @@ cli_test(bad.json_missing 2 "${E}.*no_truth_ee.csv: no ground truth: 6-column qu
 cli_test(bad.queries_missing 2 "${E}nowhere: no such file or directory" validate nowhere)
 
 # Command-line mistakes
-cli_test(bad.cli_unknown_command 2 "${E}unknown command 'frobnicate', expected one of run, sweep, step, bench, simulate, export, validate, list, info" frobnicate)
+cli_test(bad.cli_unknown_command 2 "${E}unknown command 'frobnicate', expected one of run, sweep, step, proximity, bench, simulate, export, validate, list, info" frobnicate)
 cli_test(bad.cli_no_command 2 "${E}A subcommand is required" )
 cli_test(bad.cli_unknown_flag 2 "${E}The following argument was not expected: --bogus \\(ccdlab step --help\\)" step ${T0} ${T0} --bogus)
 cli_test(bad.cli_missing_argument 2 "${E}t1 is required" step ${T0})
