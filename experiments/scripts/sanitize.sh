@@ -2,7 +2,7 @@
 # The test suite under sanitizers (clang-14):
 #   asan: every test (GoogleTest + CLI) under AddressSanitizer + UBSan (undefined behaviour is fatal);
 #   tsan: the parallel parts — every scheduler × thread count, the executor, restructuring, normal cones, the
-#         combinations and differential tests — under ThreadSanitizer, with libomp's Archer tool so that
+#         combinations and differential tests, the proximity query — under ThreadSanitizer, with libomp's Archer tool so that
 #         OpenMP's own synchronisation is understood (no false reports from the runtime).
 # Usage: experiments/scripts/sanitize.sh [asan] [tsan]   (default: both)
 set -euo pipefail
