@@ -100,3 +100,40 @@ def test_funnel_pairs_equal_the_cli(tmp_path):
         assert p[kind + "_distance"].tolist() == [float(r["distance"]) for r in want]
         assert p[kind + "_type"].tolist() == [r["type"] for r in want]
         assert (p[kind + "_distance"] < dhat).all()
+
+
+def test_a_detector_keeps_its_hierarchies_across_calls_and_answers_as_the_functions():
+    x0, x1, faces = hovering_vertex()
+    d = ccdlab.Detector(faces, scheduler="phc", threads=2, tester={"name": "conservative", "delta": 1e-6})
+    assert "name: conservative" in d.options and "threads: 2" in d.options
+    for _ in range(2):  # built, then refit
+        r, f = d.step(x0, x1), ccdlab.step(x0, x1, faces, tester="conservative:delta=1e-6")
+        assert r["vf"].tolist() == f["vf"].tolist() and r["vf_toi"].tolist() == f["vf_toi"].tolist()
+        assert d.earliest_toi(x0, x1) == ccdlab.earliest_toi(x0, x1, faces, tester="conservative:delta=1e-6")
+        p, q = d.proximity(x0, 0.6), ccdlab.proximity(x0, faces, 0.6)
+        for key in ("vf", "vf_distance", "vf_type", "vf_coords", "ee", "ee_distance", "ee_type", "ee_coords"):
+            assert p[key].tolist() == q[key].tolist(), key
+        a = d.active_set_and_step(x0.tolist(), x1, 0.55, 0.1)
+        assert a["step_size"] == ccdlab.active_set_and_step(x0, x1, faces, 0.55, 0.1)["step_size"]
+    # Several bodies: the floor triangle is an obstacle, the small one cloth.
+    b = ccdlab.Detector(bodies=[{"faces": [[0, 1, 2]], "vertices": 3, "obstacle": True, "name": "floor"},
+                                {"faces": [[0, 1, 2]], "vertices": 3, "name": "cloth"}])
+    assert b.proximity(x0, 0.55)["vf"].tolist() == [[3, 0, 1, 2]]
+
+
+def test_detector_errors_are_spelled_for_python():
+    x0, x1, faces = hovering_vertex()
+    d = ccdlab.Detector(faces)
+    with pytest.raises(ccdlab.Error, match=r"^ccdlab.Detector: k: expected one of 6, 14, 18, 26, got 7"):
+        ccdlab.Detector(faces, k=7)
+    with pytest.raises(ccdlab.Error, match=r"^ccdlab.Detector: unknown option 'kk'"):
+        ccdlab.Detector(faces, kk=1)
+    with pytest.raises(ccdlab.Error, match=r"^ccdlab.Detector: give faces .* or bodies"):
+        ccdlab.Detector()
+    with pytest.raises(ccdlab.Error, match=r"^ccdlab.Detector: bodies\[0\]: unknown key 'vertex'"):
+        ccdlab.Detector(bodies=[{"faces": [[0, 1, 2]], "vertex": 3}])
+    with pytest.raises(ccdlab.Error, match=r"^ccdlab.Detector.proximity: dhat = -1"):
+        d.proximity(x0, -1)
+    d.step(x0, x1)
+    with pytest.raises(ccdlab.Error, match=r"^ccdlab.Detector.step: x0 has 5 positions, but this detector's mesh has 6"):
+        d.step(x0[:5], x1[:5])

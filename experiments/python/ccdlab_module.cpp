@@ -21,9 +21,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <cstring>
+#include <limits>
+#include <mutex>
 #include <string_view>
 
 #include "ccdlab/build_info.hpp"
+#include "ccdlab/ccdlab.hpp"
 #include "framework/config/pipeline_config.hpp"
 #include "framework/config/strategy_spec.hpp"
 #include "framework/pipeline/bodies.hpp"
@@ -317,6 +321,161 @@ py::dict near_pairs(const Points& x0, const Points* x1, const Triangles& faces, 
   return d;
 }
 
+/// kwargs → the C++ API's Options: the same keywords as the functions' (strategies_from), plus memory_limit.
+Options options_from(const py::kwargs& options, const char* call) {
+  Options o;
+  for (const auto& [key_handle, value] : options) {
+    const std::string key = py::str(key_handle);
+    if (key == "k") o.k = value.cast<int>();
+    else if (key == "width") o.width = value.cast<int>();
+    else if (key == "threads") o.threads = value.cast<int>();
+    else if (key == "hierarchy") o.hierarchy = strategy_spec_text(strategy_option(value, key, builder_registry(), kDefaultHierarchy, call));
+    else if (key == "scheduler") o.scheduler = strategy_spec_text(strategy_option(value, key, scheduler_registry(), kDefaultScheduler, call));
+    else if (key == "tester") o.tester = strategy_spec_text(strategy_option(value, key, tester_registry(), kDefaultTester, call));
+    else if (key == "narrow") o.narrow = value.cast<std::string>();
+    else if (key == "representative") o.representative = value.cast<std::string>();
+    else if (key == "normal_cones") o.normal_cones = value.cast<bool>();
+    else if (key == "memory_limit") o.memory_limit = value.cast<std::string>();
+    else if (key == "candidate_limit") o.candidate_limit = value.cast<double>();
+    else if (key == "time_limit") o.time_limit = value.cast<double>();
+    else if (key == "end_boxes")
+      o.end_boxes = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "on" : "off") : value.cast<std::string>();
+    else fail("{}: unknown option '{}' (k, width, end_boxes, hierarchy, scheduler, threads, tester, narrow, representative, "
+              "normal_cones, memory_limit, candidate_limit, time_limit)", call, key);
+  }
+  return o;
+}
+
+std::vector<Point> to_points(const Points& value, const char* call, const char* name) {
+  const Positions p = to_positions(value, call, name);
+  std::vector<Point> out(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) out[i] = {p[i].x(), p[i].y(), p[i].z()};
+  return out;
+}
+
+/// Rows of `n` values each, from `get(i, j)`.
+template <class T, class Get>
+py::array_t<T> rows(std::size_t count, py::ssize_t n, Get&& get) {
+  py::array_t<T> a = n == 1 ? py::array_t<T>(py::ssize_t(count)) : py::array_t<T>({py::ssize_t(count), n});
+  T* d = a.mutable_data();
+  for (std::size_t i = 0; i < count; ++i)
+    for (py::ssize_t j = 0; j < n; ++j) d[std::size_t(i) * std::size_t(n) + std::size_t(j)] = get(i, j);
+  return a;
+}
+
+py::dict contacts_dict(const Detector::Contacts& c) {
+  py::dict d;
+  for (const auto& [name, list] : {std::pair{"vf", &c.vf}, std::pair{"ee", &c.ee}}) {
+    const std::string k(name);
+    const auto& l = *list;
+    d[py::str(k)] = rows<std::int64_t>(l.size(), 4, [&](std::size_t i, py::ssize_t j) { return l[i].vertices[std::size_t(j)]; });
+    d[py::str(k + "_toi")] = rows<double>(l.size(), 1, [&](std::size_t i, py::ssize_t) { return l[i].toi; });
+    d[py::str(k + "_coords")] = rows<double>(l.size(), 2, [&](std::size_t i, py::ssize_t j) { return l[i].coords[std::size_t(j)]; });
+    d[py::str(k + "_normal")] = rows<double>(l.size(), 3, [&](std::size_t i, py::ssize_t j) { return l[i].normal[std::size_t(j)]; });
+  }
+  return d;
+}
+
+py::dict proximities_dict(const Detector::Proximities& p) {
+  py::dict d;
+  for (const auto& [name, list] : {std::pair{"vf", &p.vf}, std::pair{"ee", &p.ee}}) {
+    const std::string k(name);
+    const auto& l = *list;
+    d[py::str(k)] = rows<std::int64_t>(l.size(), 4, [&](std::size_t i, py::ssize_t j) { return l[i].vertices[std::size_t(j)]; });
+    d[py::str(k + "_distance")] = rows<double>(l.size(), 1, [&](std::size_t i, py::ssize_t) { return l[i].distance; });
+    py::list types;
+    for (const auto& q : l) types.append(py::str(std::string(q.type)));
+    d[py::str(k + "_type")] = py::module_::import("numpy").attr("array")(types, "dtype"_a = "U7");
+    d[py::str(k + "_coords")] = rows<double>(l.size(), 2, [&](std::size_t i, py::ssize_t j) { return l[i].coords[std::size_t(j)]; });
+  }
+  return d;
+}
+
+/// ccdlab.Detector: the C++ API's Detector from Python — its hierarchies built on the first call and refit on later
+/// ones, what a simulation loop or a solver's Newton iterations want. One call at a time per Detector (a lock).
+class PyDetector {
+  /// Runs f without the GIL (the Detector runs its own threads), one call at a time; the API's messages in Python's
+  /// spelling ("ccdlab::Detector::step: …" → "ccdlab.Detector.step: …").
+  template <class F>
+  auto locked(F&& f) {
+    try {
+      py::gil_scoped_release release;
+      const std::lock_guard<std::mutex> lock(mutex_);
+      return f();
+    } catch (const Error& e) {
+      throw Error(python_spelling(e.what()));
+    }
+  }
+  static std::string python_spelling(std::string m) {
+    for (const auto& [from, to] : {std::pair{"ccdlab::Detector::", "ccdlab.Detector."}, {"ccdlab::Detector", "ccdlab.Detector"},
+                                   {"Options::", ""}})
+      for (std::size_t at = m.find(from); at != std::string::npos; at = m.find(from, at + std::strlen(to)))
+        m.replace(at, std::strlen(from), to);
+    return m;
+  }
+
+ public:
+  PyDetector(const py::object& faces, const py::object& bodies, const py::kwargs& options) {
+    const char* call = "ccdlab.Detector";
+    const Options o = options_from(options, call);
+    if (faces.is_none() == bodies.is_none()) fail("{}: give faces (one self-colliding mesh) or bodies=[…], not both", call);
+    if (!faces.is_none()) {
+      std::vector<Triangle> f;
+      for (const Face& t : to_faces(faces, std::size_t(std::numeric_limits<int>::max()), call)) f.push_back({t[0], t[1], t[2]});
+      detector_ = locked([&] { return std::make_unique<Detector>(f, o); });
+      return;
+    }
+    if (!py::isinstance<py::sequence>(bodies) || py::isinstance<py::str>(bodies))
+      fail("{}: bodies must be a list of dicts {{faces, vertices, obstacle, self_collision, name}}, got {}", call, described(bodies));
+    std::vector<Detector::Body> list;
+    for (const py::handle b : bodies) {
+      if (!py::isinstance<py::dict>(b)) fail("{}: bodies[{}] must be a dict, got {}", call, list.size(), described(b));
+      const py::dict d = py::reinterpret_borrow<py::dict>(b);
+      for (const auto& [k, v] : d) {
+        const std::string key = py::str(k);
+        if (key != "faces" && key != "vertices" && key != "obstacle" && key != "self_collision" && key != "name")
+          fail("{}: bodies[{}]: unknown key '{}' (faces, vertices, obstacle, self_collision, name)", call, list.size(), key);
+      }
+      if (!d.contains("faces") || !d.contains("vertices")) fail("{}: bodies[{}]: faces and vertices are required", call, list.size());
+      Detector::Body body;
+      body.vertices = d["vertices"].cast<int>();
+      if (body.vertices < 0) fail("{}: bodies[{}]: vertices = {}: expected a count", call, list.size(), body.vertices);
+      for (const Face& t : to_faces(d["faces"], std::size_t(body.vertices), call)) body.faces.push_back({t[0], t[1], t[2]});
+      body.obstacle = d.contains("obstacle") && d["obstacle"].cast<bool>();
+      body.self_collision = !d.contains("self_collision") || d["self_collision"].cast<bool>();
+      body.name = d.contains("name") ? d["name"].cast<std::string>() : std::string();
+      list.push_back(std::move(body));
+    }
+    detector_ = locked([&] { return std::make_unique<Detector>(std::span<const Detector::Body>(list), o); });
+  }
+
+  py::dict step(const Points& x0, const Points& x1) {
+    const auto p0 = to_points(x0, "ccdlab.Detector.step", "x0"), p1 = to_points(x1, "ccdlab.Detector.step", "x1");
+    return contacts_dict(locked([&] { return detector_->step(p0, p1); }));
+  }
+  double earliest_toi(const Points& x0, const Points& x1) {
+    const auto p0 = to_points(x0, "ccdlab.Detector.earliest_toi", "x0"), p1 = to_points(x1, "ccdlab.Detector.earliest_toi", "x1");
+    return locked([&] { return detector_->earliest_toi(p0, p1); });
+  }
+  py::dict proximity(const Points& x, double dhat) {
+    const auto p = to_points(x, "ccdlab.Detector.proximity", "x");
+    return proximities_dict(locked([&] { return detector_->proximity(p, dhat); }));
+  }
+  py::dict active_set_and_step(const Points& x0, const Points& x1, double dhat, double separation) {
+    const char* call = "ccdlab.Detector.active_set_and_step";
+    const auto p0 = to_points(x0, call, "x0"), p1 = to_points(x1, call, "x1");
+    const Detector::ActiveSetAndStep r = locked([&] { return detector_->active_set_and_step(p0, p1, dhat, separation); });
+    py::dict d = proximities_dict(r.active);
+    d["step_size"] = r.step_size;
+    return d;
+  }
+  [[nodiscard]] std::string options() const { return detector_->resolved_options(); }
+
+ private:
+  std::unique_ptr<Detector> detector_;
+  std::mutex mutex_;
+};
+
 /// Runs the pipeline over consecutive frames (one BVH, refit each step, as `ccdlab run`).
 py::list run_frames(const std::vector<py::object>& frames, const Triangles& faces, const py::kwargs& options,
                     const char* call = "ccdlab.sequence") {
@@ -443,6 +602,23 @@ PYBIND11_MODULE(_ccdlab, m) {
         "of the shared format, or 'hard-cases' — as `ccdlab validate`: a list of dicts, one per set and tester "
         "(set, scene, collection, tester, queries, positives, false_negatives, false_positives, filtered, "
         "fallbacks, mean/median/p99/max_us, toi_max_error, toi_mean_error, toi_late).");
+  py::class_<PyDetector>(m, "Detector",
+                         "A detector kept across calls (the C++ API's ccdlab::Detector): Detector(faces, **options) for "
+                         "one self-colliding mesh, or Detector(bodies=[{faces, vertices, obstacle, self_collision, name}, "
+                         "...], **options). Its hierarchies are built on the first call and refit on later ones; options "
+                         "as step()'s, plus memory_limit.")
+      .def(py::init<const py::object&, const py::object&, const py::kwargs&>(), py::arg("faces") = py::none(),
+           py::arg("bodies") = py::none())
+      .def("step", &PyDetector::step, py::arg("x0"), py::arg("x1"),
+           "Every contact while the vertices move linearly from x0 to x1: vf, ee (vertex ids), *_toi, *_coords, *_normal.")
+      .def("earliest_toi", &PyDetector::earliest_toi, py::arg("x0"), py::arg("x1"),
+           "The step's earliest time of contact (1.0 when none).")
+      .def("proximity", &PyDetector::proximity, py::arg("x"), py::arg("dhat"),
+           "Every pair closer than dhat at x, as ccdlab.proximity (no hash, counters or ms); the queries of the last four "
+           "dhat values are kept and refit.")
+      .def("active_set_and_step", &PyDetector::active_set_and_step, py::arg("x0"), py::arg("x1"), py::arg("dhat"),
+           py::arg("separation"), "proximity(x0, dhat) and step_size: how far towards x1 before any pair comes within separation.")
+      .def_property_readonly("options", &PyDetector::options, "the options in effect, every default filled in (YAML)");
   m.def("schedulers", [] { return scheduler_registry().names(); }, "the registered traversal schedulers");
   m.def("testers", [] { return tester_registry().names(); }, "the registered elementary testers");
 }

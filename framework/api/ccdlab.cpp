@@ -33,21 +33,6 @@ auto named(std::string_view call, F&& f) {
   }
 }
 
-/// A strategy choice as the API's "name:key=value,…" text.
-std::string spec_of(const StrategyChoice& c) {
-  std::string spec = c.name;
-  char sep = ':';
-  for (const auto& [key, value] : c.params.all()) {
-    spec += sep + key + '=';
-    std::visit([&spec](const auto& v) {
-      if constexpr (std::is_same_v<std::decay_t<decltype(v)>, bool>) spec += v ? "true" : "false";
-      else spec += fmt::format("{}", v);
-    }, value);
-    sep = ',';
-  }
-  return spec;
-}
-
 /// How Options spells each setting in messages (PipelineSettings::validate's SettingName).
 std::string option_name(std::string_view key) {
   if (key == "narrow.mode") return "Options::narrow";
@@ -114,7 +99,7 @@ Options Options::from_yaml(std::string_view yaml, std::string_view source) {
   }
   Options o;
   o.k = c.k, o.width = c.width, o.end_boxes = to_string(c.end_boxes), o.threads = c.threads, o.normal_cones = c.normal_cones;
-  o.hierarchy = spec_of(c.hierarchy), o.scheduler = spec_of(c.scheduler), o.tester = spec_of(c.tester);
+  o.hierarchy = strategy_spec_text(c.hierarchy), o.scheduler = strategy_spec_text(c.scheduler), o.tester = strategy_spec_text(c.tester);
   o.narrow = to_string(c.narrow.mode);
   o.representative = to_string(c.narrow.representative);
   o.memory_limit = c.memory_limit;

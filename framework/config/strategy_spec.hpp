@@ -3,7 +3,9 @@
 // module's options) — validated against its registry exactly like a YAML map {name: NAME, key: value, …};
 // errors name `where` followed by the spec (e.g. "--tester " or "ccdlab.step tester=") instead of a file position.
 #include <string>
+#include <type_traits>
 #include <utility>
+#include <variant>
 
 #include <yaml-cpp/yaml.h>
 
@@ -38,6 +40,21 @@ StrategyChoice strategy_from_node(const YAML::Node& node, const std::string& whe
                                   const Registry<Product>& registry, const std::string& default_name) {
   YamlReader reader(where, {});
   return reader.strategy(node, key, registry, default_name);
+}
+
+/// The one-line text of a choice, "name:key=value,…" (every parameter it holds): what parse_strategy_spec reads back.
+inline std::string strategy_spec_text(const StrategyChoice& c) {
+  std::string spec = c.name;
+  char sep = ':';
+  for (const auto& [key, value] : c.params.all()) {
+    spec += sep + key + '=';
+    std::visit([&spec](const auto& v) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(v)>, bool>) spec += v ? "true" : "false";
+      else spec += fmt::format("{}", v);
+    }, value);
+    sep = ',';
+  }
+  return spec;
 }
 
 template <class Product>

@@ -5,10 +5,10 @@ end_boxes, hierarchy, scheduler, threads, tester, narrow, representative, normal
 time_limit); a bad argument raises ccdlab.Error (a ValueError) that names the call and the argument.
 Guide: docs/python.md; the proximity query: docs/proximity.md.
 """
-from ._ccdlab import (Error, __version__, active_set_and_step, earliest_toi, proximity, schedulers, sequence, step,
-                      testers, validate)
+from ._ccdlab import (Detector, Error, __version__, active_set_and_step, earliest_toi, proximity, schedulers, sequence,
+                      step, testers, validate)
 
 Error.__module__ = __name__  # shown as ccdlab.Error, not as the extension's inner name
 
-__all__ = ["Error", "__version__", "active_set_and_step", "earliest_toi", "proximity", "schedulers", "sequence", "step",
-           "testers", "validate"]
+__all__ = ["Detector", "Error", "__version__", "active_set_and_step", "earliest_toi", "proximity", "schedulers",
+           "sequence", "step", "testers", "validate"]
