@@ -239,32 +239,36 @@ py::dict result_dict(const StepResult& r, const Positions& x0, const Positions& 
   return d;
 }
 
+/// Rows of `n` values each, from `get(i, j)`.
+template <class T, class Get>
+py::array_t<T> rows(std::size_t count, py::ssize_t n, Get&& get) {
+  py::array_t<T> a = n == 1 ? py::array_t<T>(py::ssize_t(count)) : py::array_t<T>({py::ssize_t(count), n});
+  T* d = a.mutable_data();
+  for (std::size_t i = 0; i < count; ++i)
+    for (py::ssize_t j = 0; j < n; ++j) d[std::size_t(i) * std::size_t(n) + std::size_t(j)] = get(i, j);
+  return a;
+}
+
+/// One kind's proximity pairs (`k`: "vf" or "ee") as arrays: k (ids), k_distance, k_type, k_coords; any pair type with
+/// vertices, distance and coords, its type's name from `type_of` (the framework's ProximityPair, the API's Proximity).
+template <class P, class TypeOf>
+void put_proximities(py::dict& d, const std::string& k, const std::vector<const P*>& l, TypeOf&& type_of) {
+  d[py::str(k)] = rows<std::int64_t>(l.size(), 4, [&](std::size_t i, py::ssize_t j) { return l[i]->vertices[std::size_t(j)]; });
+  d[py::str(k + "_distance")] = rows<double>(l.size(), 1, [&](std::size_t i, py::ssize_t) { return l[i]->distance; });
+  py::list types;
+  for (const P* q : l) types.append(py::str(std::string(type_of(*q))));
+  d[py::str(k + "_type")] = py::module_::import("numpy").attr("array")(types, "dtype"_a = "U7");
+  d[py::str(k + "_coords")] = rows<double>(l.size(), 2, [&](std::size_t i, py::ssize_t j) { return l[i]->coords[std::size_t(j)]; });
+}
+
 /// A proximity query's pairs as NumPy arrays, split by kind (as step's contacts).
 py::dict proximity_dict(const ProximityResult& r) {
   py::dict d;
   for (const ContactKind kind : {ContactKind::vf, ContactKind::ee}) {
-    std::vector<const ProximityPair*> rows;
+    std::vector<const ProximityPair*> l;
     for (const ProximityPair& p : r.pairs)
-      if (p.kind == kind) rows.push_back(&p);
-    const auto n = py::ssize_t(rows.size());
-    py::array_t<std::int64_t> ids({n, py::ssize_t(4)});
-    py::array_t<double> distance(n), coords({n, py::ssize_t(2)});
-    py::list types;
-    auto idr = ids.mutable_unchecked<2>();
-    auto dr = distance.mutable_unchecked<1>();
-    auto cr = coords.mutable_unchecked<2>();
-    for (py::ssize_t i = 0; i < n; ++i) {
-      const ProximityPair& p = *rows[std::size_t(i)];
-      for (int k = 0; k < 4; ++k) idr(i, k) = p.vertices[std::size_t(k)];
-      dr(i) = p.distance;
-      cr(i, 0) = p.coords[0], cr(i, 1) = p.coords[1];
-      types.append(py::str(std::string(to_string(p.type))));
-    }
-    const std::string name(to_string(kind));
-    d[py::str(name)] = ids;
-    d[py::str(name + "_distance")] = distance;
-    d[py::str(name + "_type")] = py::module_::import("numpy").attr("array")(types, "dtype"_a = "U7");
-    d[py::str(name + "_coords")] = coords;
+      if (p.kind == kind) l.push_back(&p);
+    put_proximities(d, std::string(to_string(kind)), l, [](const ProximityPair& p) { return to_string(p.type); });
   }
   const StepCounters& k = r.step.counters;
   const StepTimings& t = r.step.timings;
@@ -353,16 +357,6 @@ std::vector<Point> to_points(const Points& value, const char* call, const char* 
   return out;
 }
 
-/// Rows of `n` values each, from `get(i, j)`.
-template <class T, class Get>
-py::array_t<T> rows(std::size_t count, py::ssize_t n, Get&& get) {
-  py::array_t<T> a = n == 1 ? py::array_t<T>(py::ssize_t(count)) : py::array_t<T>({py::ssize_t(count), n});
-  T* d = a.mutable_data();
-  for (std::size_t i = 0; i < count; ++i)
-    for (py::ssize_t j = 0; j < n; ++j) d[std::size_t(i) * std::size_t(n) + std::size_t(j)] = get(i, j);
-  return a;
-}
-
 py::dict contacts_dict(const Detector::Contacts& c) {
   py::dict d;
   for (const auto& [name, list] : {std::pair{"vf", &c.vf}, std::pair{"ee", &c.ee}}) {
@@ -379,14 +373,9 @@ py::dict contacts_dict(const Detector::Contacts& c) {
 py::dict proximities_dict(const Detector::Proximities& p) {
   py::dict d;
   for (const auto& [name, list] : {std::pair{"vf", &p.vf}, std::pair{"ee", &p.ee}}) {
-    const std::string k(name);
-    const auto& l = *list;
-    d[py::str(k)] = rows<std::int64_t>(l.size(), 4, [&](std::size_t i, py::ssize_t j) { return l[i].vertices[std::size_t(j)]; });
-    d[py::str(k + "_distance")] = rows<double>(l.size(), 1, [&](std::size_t i, py::ssize_t) { return l[i].distance; });
-    py::list types;
-    for (const auto& q : l) types.append(py::str(std::string(q.type)));
-    d[py::str(k + "_type")] = py::module_::import("numpy").attr("array")(types, "dtype"_a = "U7");
-    d[py::str(k + "_coords")] = rows<double>(l.size(), 2, [&](std::size_t i, py::ssize_t j) { return l[i].coords[std::size_t(j)]; });
+    std::vector<const Detector::Proximity*> l;
+    for (const Detector::Proximity& q : *list) l.push_back(&q);
+    put_proximities(d, name, l, [](const Detector::Proximity& q) { return q.type; });
   }
   return d;
 }
