@@ -10,21 +10,12 @@
 #include "framework/mesh/mesh_io.hpp"
 #include "framework/pipeline/brute_force.hpp"
 #include "framework/pipeline/proximity_query.hpp"
+#include "framework/pipeline/work_estimate.hpp"
 #include "framework/util/error.hpp"
 #include "framework/util/files.hpp"
 #include "strategies/registry.hpp"
 
 namespace ccdlab::cli {
-namespace {
-
-double bounding_box_diagonal(const Positions& x) {
-  if (x.empty()) return 0;
-  Vec3 lo = x[0], hi = x[0];
-  for (const Vec3& p : x) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  return (hi - lo).norm();
-}
-
-}  // namespace
 
 int proximity_command(const ProximityOptions& o) {
   if (o.repeat < 1) fail("--repeat {}: expected at least 1", o.repeat);

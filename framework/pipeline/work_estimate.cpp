@@ -86,6 +86,8 @@ SceneSize scene_size(const Positions& x_t0, const Positions& x_t1) {
 
 }  // namespace
 
+double bounding_box_diagonal(const Positions& x) { return scene_size(x, x).diagonal; }
+
 std::string scale_problem(const Positions& x_t0, const Positions& x_t1) {
   const SceneSize s = scene_size(x_t0, x_t1);
   if (s.largest > kMaxCoordinate)

@@ -38,6 +38,10 @@ inline constexpr std::size_t kWorkEstimateSamples = 256;
 /// and its answers are wrong). Between them lie 60 orders of magnitude: scenes scaled by 1e±6 answer as unscaled.
 inline constexpr double kMaxCoordinate = 1e30, kMinDiagonal = 1e-30;
 
+/// The bounding-box diagonal of one frame (0 when empty; no underflow for tiny scenes): what a relative d̂ or
+/// thickness is a fraction of.
+[[nodiscard]] double bounding_box_diagonal(const Positions& x);
+
 /// Empty when the frames lie within those bounds; else what is wrong, as a sentence for a refusal.
 [[nodiscard]] std::string scale_problem(const Positions& x_t0, const Positions& x_t1);
 

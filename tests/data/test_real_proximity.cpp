@@ -13,6 +13,7 @@
 #include "framework/mesh/mesh_io.hpp"
 #include "framework/pipeline/brute_force.hpp"
 #include "framework/pipeline/proximity_query.hpp"
+#include "framework/pipeline/work_estimate.hpp"
 #include "strategies/registry.hpp"
 #include "support/test_meshes.hpp"
 
@@ -72,9 +73,7 @@ TEST_P(RealProximity, FindsExactlyTheReferencePairsForEverySchedule) {
   const MeshData m = read_mesh(path);
   const TriMesh mesh(m.positions.size(), m.faces);
   if (mesh.num_faces() > kLargestFrame) GTEST_SKIP() << "under a sanitizer only frames up to " << kLargestFrame << " triangles";
-  Vec3 lo = m.positions[0], hi = lo;
-  for (const Vec3& p : m.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  const double diagonal = (hi - lo).norm();
+  const double diagonal = bounding_box_diagonal(m.positions);
   // Every schedule on the smallest frame; sequential × 1 and phc × 2 on the others.
   const bool small = mesh.num_faces() < 30000;
   std::vector<std::pair<const char*, int>> schedules{{"sequential", 1}, {"phc", 2}};
