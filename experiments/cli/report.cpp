@@ -36,6 +36,8 @@ nlohmann::json step_json(const StepResult& r) {
             {"plane_culled", c.plane_culled},
             {"split_culled", c.split_culled},
             {"split_ms", double(c.split_ns) * 1e-6},
+            {"sixteenths_tested", c.sixteenths_tested},
+            {"sixteenths_culled", c.sixteenths_culled},
             {"proximity_tested", c.proximity_tested},
             {"proximity_culled", c.proximity_culled},
             {"proximity_ms", double(c.proximity_ns) * 1e-6},

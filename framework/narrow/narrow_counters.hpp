@@ -20,8 +20,10 @@ struct NarrowCounters {
   std::uint64_t kdop_culled = 0;     ///< pairs whose swept feature 26-DOPs are disjoint (stage 1, every mode)
   std::uint64_t plane_culled = 0;    ///< pairs proven to stay off each other's plane/line (stage 2, batched only)
   std::uint64_t split_culled = 0;    ///< pairs proven apart on every half or sixteenth of the step (stage 3, batched only)
+  std::uint64_t sixteenths_tested = 0;  ///< of stage 3's, the pairs its sixteenths received (0 in steps where they do not run)
+  std::uint64_t sixteenths_culled = 0;  ///< of which proven apart on every sixteenth
   std::uint64_t proximity_tested = 0;  ///< pairs stage 4 received (batched only; 0 in steps where it does not run)
-  std::uint64_t proximity_culled = 0;  ///< of which proven apart on the sixteenths stage 3 left open
+  std::uint64_t proximity_culled = 0;  ///< of which proven apart on the windows stage 3 left open
   std::uint64_t vf_tests = 0;        ///< elementary VF tests run (survivors of the culling stages)
   std::uint64_t ee_tests = 0;        ///< elementary EE tests run
   std::uint64_t orphan_tests = 0;    ///< of the VF + EE tests, those from the orphan set
@@ -45,6 +47,7 @@ struct NarrowCounters {
     triangle_tested += o.triangle_tested, triangle_culled += o.triangle_culled, triangle_fine += o.triangle_fine, triangle_ns += o.triangle_ns;
     kdop_culled += o.kdop_culled, plane_culled += o.plane_culled;
     split_culled += o.split_culled, split_ns += o.split_ns;
+    sixteenths_tested += o.sixteenths_tested, sixteenths_culled += o.sixteenths_culled;
     proximity_tested += o.proximity_tested, proximity_culled += o.proximity_culled;
     proximity_ns += o.proximity_ns;
     vf_tests += o.vf_tests, ee_tests += o.ee_tests, orphan_tests += o.orphan_tests;

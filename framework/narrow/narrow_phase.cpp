@@ -17,18 +17,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// What each stage costs a pair it receives, in ns, from docs/appendix-narrow-phase.md's stage tables: only the ratios
-/// matter to the rule, and they move little between SIMD targets.
-struct StageNs {
-  static constexpr double gather = 5;       ///< per candidate gathered
-  static constexpr double frames = 4;       ///< stage 0's float frames and face boxes, per face
-  static constexpr double box_pass = 5;     ///< stage 0, x, y, z from the faces' boxes, per candidate (counted
-                                            ///< where skipped too: a bias against stage 0 that small)
-  static constexpr double fine_pass = 25;   ///< stage 0, the other axes and normals, per candidate reaching them
-  static constexpr double kdop = 3, plane = 10, split = 25, proximity = 50;  ///< stages 1–4, per pair received
-  static constexpr double test = 150;       ///< per elementary test
-};
-
 /// The candidates carry the orphans (Representatives::append_pairs) in a step expected to gather at most this
 /// many candidates per orphan: the last step's candidates, less the share stage 0 culled when it last ran if it
 /// runs in this one. A gathered candidate then checks two signatures, now and then reads a list, and brings the
@@ -91,7 +79,8 @@ void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const
   bounds_ = &bounds;
   triangle_stage_ = options_.mode == NarrowMode::batched && tester_.cull_reach() && triangle_rule_.runs(steps_);
   triangle_box_pass_ = !end_boxes;
-  proximity_stage_ = proximity_rule_.runs(steps_);
+  sixteenths_stage_ = sixteenths_rule_.runs(steps_);
+  proximity_stage_ = proximity_rule_.runs(steps_) && (sixteenths_stage_ || motionless_);
   if (triangle_stage_) float_frames_.update(x_t0.data(), x_t1.data(), x_t0.size(), mesh_.faces(), triangle_box_pass_);
   const OrphanSet& orphans = reps_.orphans();
   switch (options_.carry_orphans) {
@@ -114,14 +103,10 @@ double counted_work_per_candidate(const NarrowCounters& c, std::size_t faces, do
                                                : StageNs::frames * double(faces) + StageNs::box_pass * double(c.triangle_tested) +
                                                      StageNs::fine_pass * double(c.triangle_fine);
   const double work = stage0 + StageNs::gather * double(c.candidates_gathered) + StageNs::kdop * double(s1) +
-                      StageNs::plane * double(s2) + StageNs::split * double(s3) + StageNs::proximity * double(s4) +
+                      StageNs::plane * double(s2) + StageNs::halves * double(s3) +
+                      StageNs::sixteenths * double(c.sixteenths_tested) + StageNs::proximity * double(s4) +
                       StageNs::test * test_cost * double(c.vf_tests + c.ee_tests);
   return work / double(candidates);
-}
-
-void ProximityStageRule::record(const NarrowCounters& step, double test_cost) {
-  if (step.proximity_tested > 0)
-    pays_ = StageNs::test * test_cost * double(step.proximity_culled) > StageNs::proximity * double(step.proximity_tested);
 }
 
 bool TriangleStageRule::runs(std::uint64_t step) const {
@@ -141,7 +126,10 @@ void NarrowPhase::end_step(const NarrowCounters& step) {
   if (step.triangle_tested > 0) triangle_cull_rate_ = double(step.triangle_culled) / double(step.triangle_tested);
   if (options_.mode == NarrowMode::batched) {
     triangle_rule_.record(triangle_stage_, step, mesh_.faces().size(), tester_.relative_test_cost());
-    proximity_rule_.record(step, tester_.relative_test_cost());
+    const double test_cost = tester_.relative_test_cost();
+    const double stage4 = proximity_rule_.net_saving(step.proximity_tested, step.proximity_culled, test_cost);
+    sixteenths_rule_.record(step.sixteenths_tested, step.sixteenths_culled, test_cost, std::max(0.0, stage4));
+    proximity_rule_.record(step.proximity_tested, step.proximity_culled, test_cost);
   }
   last_candidates_ = step.candidates_gathered + step.triangle_culled;
   if (certify_orphans_) certificates_.record(step.orphans_unmoved, reps_.orphans().vf.size() + reps_.orphans().ee.size());
@@ -332,28 +320,28 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   const auto t_split = Clock::now();
   c.plane_ns += ns_since(t);
   // Stage 3 on stage 2's survivors, from the coefficients, threshold and reach stage 2 left in the rows: halves,
-  // then sixteenths on what the halves keep, within the halves they left open (split_filter.hpp); both leave
-  // each row's open windows, the sixteenths' for stage 4.
+  // then, in the steps where they pay (CullPassRule), sixteenths on what the halves keep, within the halves they
+  // left open (split_filter.hpp); the last pass leaves each row's open windows for stage 4.
   std::size_t kept_vf = 0, rows = 0;
   // Without motion (the proximity query) every window of the step is the same instant, which stage 2 has already
   // tested: stage 3 is skipped and stage 4 takes the whole step as one window.
-  const int levels = motionless_ ? 0 : kSplitLevels;
+  const int levels = motionless_ ? 0 : sixteenths_stage_ ? kSplitLevels : kSplitCoarseLevels;
   if (motionless_) {
     kept_vf = batch.vf.size(), rows = kept_vf + batch.ee.size();
     if (compact_now) scratch.keep.assign(rows, 1);  // else: stage 2's flags
     scratch.open.assign(rows, 1);
   }
-  for (const int levels : {kSplitCoarseLevels, kSplitLevels}) {
+  for (const int pass : {kSplitCoarseLevels, kSplitLevels}) {
     if (motionless_) break;
-    const bool last = levels == kSplitLevels;
+    const bool sixteenths = pass == kSplitLevels;
     kept_vf = batch.vf.size(), rows = kept_vf + batch.ee.size();
-    if (last || compact_now) scratch.keep.assign(rows, 1);  // else: stage 2's flags, which the halves only clear
+    if (sixteenths || compact_now) scratch.keep.assign(rows, 1);  // else: stage 2's flags, which the halves only clear
     scratch.open.resize(rows);
     std::uint16_t* open = scratch.open.data();
-    const std::uint16_t* halves = last ? open : nullptr;  // read and overwritten row by row
-    split_filter(plane, 0, kept_vf, true, scratch.keep.data(), levels, open, halves);
-    split_filter(plane, kept_vf, rows, false, scratch.keep.data(), levels, open, halves);
-    if (last) break;  // stage 4 reads these rows in place, and compacts once
+    const std::uint16_t* halves = sixteenths ? open : nullptr;  // read and overwritten row by row
+    split_filter(plane, 0, kept_vf, true, scratch.keep.data(), pass, open, halves);
+    split_filter(plane, kept_vf, rows, false, scratch.keep.data(), pass, open, halves);
+    if (pass == levels) break;  // stage 4 reads these rows in place, and compacts once
     plane.compact(scratch.keep.data());  // the rows the next pass reads
     compact(batch, scratch.keep);
     compact(scratch.open, scratch.keep.data());
@@ -361,10 +349,11 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   std::size_t split_kept = 0;
   for (std::size_t i = 0; i < rows; ++i) split_kept += scratch.keep[i];
   c.split_culled += plane_kept - split_kept;
+  if (levels == kSplitLevels) c.sixteenths_tested += rows, c.sixteenths_culled += rows - split_kept;
   const auto t_proximity = Clock::now();
   c.split_ns += ns_since(t_split);
   // Stage 4 on the rows stage 3 kept, in place (same row numbers): the distance on their open windows, in the
-  // steps where it pays (ProximityStageRule).
+  // steps where it pays (CullPassRule).
   if (proximity_stage_) {
     proximity_filter(plane, kept_vf, rows, scratch.open.data(), levels, scratch.keep.data(), scratch.proximity);
     c.proximity_tested += split_kept;

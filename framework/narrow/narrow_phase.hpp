@@ -7,8 +7,9 @@
 //   stage 1  swept feature 26-DOPs overlap (feature_bounds.hpp, SIMD)     every mode; defines the contact set
 //            (batched: a coarse 16-bit copy first, the float test itself after stage 4)
 //   stage 2  certified plane test, SIMD over the batch (plane_filter.hpp)   batched mode, testers with a reach
-//   stage 3  the plane test and the boxes on parts of the step (split_filter.hpp)               〃
-//   stage 4  the features' distance on the sixteenths stage 3 left open (proximity_filter.hpp)  〃, where it pays
+//   stage 3  the plane test and the boxes on halves, then sixteenths of the step (split_filter.hpp)  〃 (the
+//            sixteenths where they pay)
+//   stage 4  the features' distance on the windows stage 3 left open (proximity_filter.hpp)  〃, where it pays
 //   test     the PrimitiveTester on the survivors; hits become contacts
 //
 // `scalar` mode runs stage 1 and the test pair by pair, as a student would write it; `batched` runs each
@@ -59,20 +60,47 @@ class TriangleStageRule {
   double work_without_ = -1;  ///< … and of the last step without it
 };
 
-/// Whether stage 4 (proximity_filter.hpp) runs in a step: when, in the last step that ran it, the tests it saved
-/// (pairs removed × a test's cost, PrimitiveTester::relative_test_cost) outweighed what it cost (pairs received ×
-/// its cost per pair). Stage 4 is exact, so the contacts are the same either way; on a dense step nearly every
-/// pair it receives is a contact, and it removes too few to pay (docs/narrow-phase.md, "Contact-dense steps").
-/// It runs in the first step and every kRemeasure-th (0 mod 16, so that stage 0's measuring steps 2 and 3 see
-/// the same stage 4), and counts from whole steps, as stage 0's rule.
-class ProximityStageRule {
+/// What each stage costs a pair it receives, in ns, from docs/appendix-narrow-phase.md's stage tables and
+/// docs/narrow-phase.md's: only the ratios matter to the rules, and they move little between SIMD targets.
+struct StageNs {
+  static constexpr double gather = 5;       ///< per candidate gathered
+  static constexpr double frames = 4;       ///< stage 0's float frames and face boxes, per face
+  static constexpr double box_pass = 5;     ///< stage 0, x, y, z from the faces' boxes, per candidate (counted
+                                            ///< where skipped too: a bias against stage 0 that small)
+  static constexpr double fine_pass = 25;   ///< stage 0, the other axes and normals, per candidate reaching them
+  static constexpr double kdop = 3, plane = 10;  ///< stages 1 and 2, per pair received
+  static constexpr double halves = 10;      ///< stage 3's halves, per pair stage 3 receives
+  static constexpr double sixteenths = 60;  ///< stage 3's sixteenths, per pair they receive
+  static constexpr double proximity = 50;   ///< stage 4, per pair received
+  static constexpr double test = 150;       ///< per elementary test
+};
+
+/// Whether a culling pass that only saves work runs in a step — stage 3's sixteenths, stage 4: when, in the last
+/// step that ran it, the tests it saved (pairs removed × a test's cost, PrimitiveTester::relative_test_cost)
+/// outweighed what it cost (pairs received × its cost per pair, StageNs). Both passes are exact, so the contacts
+/// are the same either way; on a dense step nearly every pair they receive is a contact, and they remove too few
+/// to pay (docs/narrow-phase.md, "Contact-dense steps"). Stage 4 works on the windows stage 3 leaves open, and on
+/// halves it removes next to nothing: it runs only with the sixteenths, and what it saves counts for them too.
+/// A pass runs in the first step and every kRemeasure-th (0 mod 16, so that stage 0's measuring steps 2 and 3
+/// see the same passes), and counts from whole steps, as stage 0's rule: every schedule decides alike.
+class CullPassRule {
  public:
   static constexpr std::uint64_t kRemeasure = 16;
+  /// `ns_per_pair`: the pass's cost per pair it receives (StageNs).
+  explicit CullPassRule(double ns_per_pair) : ns_per_pair_(ns_per_pair) {}
   [[nodiscard]] bool runs(std::uint64_t step) const { return step % kRemeasure == 0 || pays_; }
-  /// A step's merged counters (stage 4 ran in it when it received pairs) and the tester's relative test cost.
-  void record(const NarrowCounters& step, double test_cost);
+  /// What a run of the pass saved, in ns, net of its own cost.
+  [[nodiscard]] double net_saving(std::uint64_t received, std::uint64_t removed, double test_cost) const {
+    return StageNs::test * test_cost * double(removed) - ns_per_pair_ * double(received);
+  }
+  /// A step's counts of the pass — 0 received: it did not run, which changes nothing —, the tester's relative
+  /// test cost, and what the later passes that need this one saved (net, ns).
+  void record(std::uint64_t received, std::uint64_t removed, double test_cost, double later_saving = 0) {
+    if (received > 0) pays_ = net_saving(received, removed, test_cost) + later_saving > 0;
+  }
 
  private:
+  double ns_per_pair_;
   bool pays_ = true;
 };
 
@@ -166,8 +194,10 @@ class NarrowPhase {
   FloatFrames float_frames_;          ///< what stage 0 reads, made in begin_step when it runs
   double triangle_cull_rate_ = 0;     ///< its cull rate in the last step that ran it
   TriangleStageRule triangle_rule_;   ///< whether stage 0 runs in a step
+  bool sixteenths_stage_ = true;      ///< stage 3's sixteenths run in this step (begin_step)
+  CullPassRule sixteenths_rule_{StageNs::sixteenths};
   bool proximity_stage_ = true;       ///< stage 4 runs in this step (begin_step)
-  ProximityStageRule proximity_rule_;
+  CullPassRule proximity_rule_{StageNs::proximity};
   bool carry_orphans_ = false;        ///< the candidates carry the orphans in this step (begin_step)
   bool certify_orphans_ = false;      ///< … or the orphan loop tests them all, by their certificates
   std::uint64_t last_candidates_ = 0;  ///< the candidates of the last step

@@ -703,23 +703,30 @@ TEST(NarrowModes, EveryModeRuleTargetAndKReportsTheSameContactsAsBruteForce) {
   }
 }
 
-TEST(ProximityStageRule, RunsInItsMeasuringStepsAndWhereTheTestsItSavedOutweighedIt) {
-  ProximityStageRule rule;
-  NarrowCounters dense;  // 10% of what it receives removed: the saved float tests cost less than stage 4
-  dense.proximity_tested = 1000, dense.proximity_culled = 100;
+TEST(CullPassRule, RunsInItsMeasuringStepsAndWhereTheTestsItSavedOutweighedIt) {
+  CullPassRule rule(StageNs::proximity);
+  // 10% of what it receives removed: the saved float tests cost less than the pass
+  const std::uint64_t received = 1000, dense = 100, sparse = 700;
   EXPECT_TRUE(rule.runs(0) && rule.runs(1));  // nothing measured yet
-  rule.record(dense, 1.0);
+  rule.record(received, dense, 1.0);
   EXPECT_FALSE(rule.runs(1));
   EXPECT_FALSE(rule.runs(15));
   EXPECT_TRUE(rule.runs(16));  // measures again
-  rule.record(NarrowCounters{}, 1.0);  // a step without stage 4 (or without pairs) changes nothing
+  rule.record(0, 0, 1.0);  // a step without the pass (or without pairs) changes nothing
   EXPECT_FALSE(rule.runs(17));
-  rule.record(dense, 10.0);  // the same removal pays with tests ten times dearer (`conservative`)
+  rule.record(received, dense, 10.0);  // the same removal pays with tests ten times dearer (`conservative`)
   EXPECT_TRUE(rule.runs(17));
-  NarrowCounters sparse = dense;  // most of it removed: pays with `float` too
-  sparse.proximity_culled = 700;
-  rule.record(dense, 1.0), rule.record(sparse, 1.0);
+  rule.record(received, dense, 1.0), rule.record(received, sparse, 1.0);  // most of it removed: pays with `float` too
   EXPECT_TRUE(rule.runs(18));
+  // The break-even share is the pass's cost over a test's: the sixteenths, dearer per pair, need more removed.
+  CullPassRule sixteenths(StageNs::sixteenths);
+  const auto at_share = [&](double share) {
+    sixteenths.record(received, std::uint64_t(share * double(received)), 1.0);
+    return sixteenths.runs(1);
+  };
+  const double even = StageNs::sixteenths / StageNs::test;
+  EXPECT_FALSE(at_share(0.9 * even));
+  EXPECT_TRUE(at_share(1.1 * even));
 }
 
 TEST(NarrowModes, StageFourRunsWhereItPaysAndTheContactsStayTheSame) {
@@ -743,14 +750,21 @@ TEST(NarrowModes, StageFourRunsWhereItPaysAndTheContactsStayTheSame) {
     EXPECT_EQ(contact_set_hash(first.contacts), expect) << tester;
     const NarrowCounters& c = first.counters;
     ASSERT_GT(c.proximity_tested, 0u) << tester;
-    ProximityStageRule rule;  // what the pipeline's own rule must have concluded
-    rule.record(c, make_tester(tester)->relative_test_cost());
-    const bool pays = rule.runs(1);
+    CullPassRule rule(StageNs::proximity);  // what the pipeline's own rule must have concluded
+    rule.record(c.proximity_tested, c.proximity_culled, make_tester(tester)->relative_test_cost());
+    // Stage 4 needs the sixteenths' windows: they run where they, with what stage 4 saved on them, pay.
+    ASSERT_GT(c.sixteenths_tested, 0u) << tester;
+    CullPassRule sixteenths(StageNs::sixteenths);
+    const double cost = make_tester(tester)->relative_test_cost();
+    sixteenths.record(c.sixteenths_tested, c.sixteenths_culled, cost,
+                      std::max(0.0, rule.net_saving(c.proximity_tested, c.proximity_culled, cost)));
+    const bool pays = rule.runs(1) && sixteenths.runs(1);
     decisions.insert(pays);
     for (int s = 1; s < 3; ++s) {
       const StepResult r = pipeline.step(x0, x1);
       EXPECT_EQ(contact_set_hash(r.contacts), expect) << tester << " step " << s;
       EXPECT_EQ(r.counters.proximity_tested > 0, pays) << tester << " step " << s;
+      EXPECT_EQ(r.counters.sixteenths_tested > 0, sixteenths.runs(1)) << tester << " step " << s;
     }
   }
   EXPECT_EQ(decisions.size(), 2u) << "the scene should make stage 4 pay for one tester and not the other";

@@ -219,6 +219,7 @@ TEST(TriangleFilter, RunsInThePipelineAndLeavesItsContactsAlone) {
 /// A step's counters as a pipeline reports them (NarrowCounters), from the few fields the stage-0 rule reads.
 struct StepCounts {
   std::uint64_t candidates, tested, fine, culled, vf_pairs, ee_pairs, kdop, plane, split, proximity, tests;
+  std::uint64_t sixteenths = 0;  ///< the pairs stage 3's sixteenths received
 };
 NarrowCounters counters(const StepCounts& s) {
   NarrowCounters c;
@@ -228,6 +229,7 @@ NarrowCounters counters(const StepCounts& s) {
   c.kdop_culled = s.kdop, c.plane_culled = s.plane, c.split_culled = s.split, c.proximity_culled = s.proximity;
   c.proximity_tested = s.vf_pairs + s.ee_pairs - s.kdop - s.plane - s.split;
   c.ee_tests = s.tests;
+  c.sixteenths_tested = s.sixteenths;
   return c;
 }
 
@@ -259,10 +261,10 @@ TEST(TriangleStageRule, DecidesAsTheStepsTookOnRodTwistAndNBody) {
   // pairs would have reached stage 3 — 76 ms with it, 108 without (docs/appendix-narrow-phase.md; the orphans included). A fixed cull rate
   // cannot tell the two apart; the counted work can.
   const std::size_t rod_faces = 79864, nbody_faces = 146480;
-  const StepCounts rod_with{731086, 731086, 616415, 486081, 599535, 1154573, 1331349, 378194, 15323, 20630, 8612},
-      rod_without{731086, 0, 0, 0, 1085173, 2250583, 2573224, 693734, 28226, 31875, 8697},
-      nbody_with{806484, 806484, 806484, 513816, 295707, 660620, 189415, 60098, 569516, 17508, 119790},
-      nbody_without{806484, 0, 0, 0, 1359069, 2807366, 1673432, 1108749, 1227527, 31395, 125332};
+  const StepCounts rod_with{731086, 731086, 616415, 486081, 599535, 1154573, 1331349, 378194, 15323, 20630, 8612, 34864},
+      rod_without{731086, 0, 0, 0, 1085173, 2250583, 2573224, 693734, 28226, 31875, 8697, 49177},
+      nbody_with{806484, 806484, 806484, 513816, 295707, 660620, 189415, 60098, 569516, 17508, 119790, 421676},
+      nbody_without{806484, 0, 0, 0, 1359069, 2807366, 1673432, 1108749, 1227527, 31395, 125332, 651324};
   const double rod_ratio = counted_work_per_candidate(counters(rod_with), rod_faces) /
                            counted_work_per_candidate(counters(rod_without), rod_faces),
                nbody_ratio = counted_work_per_candidate(counters(nbody_with), nbody_faces) /
