@@ -268,13 +268,13 @@ CcdHit solve(const Motion& m, double thickness) {
 /// SIMD too (`Motion::hit` for the rows that kernel leaves), and the whole scalar test where the root search
 /// cannot decide or later candidates follow a miss. The same answers as `solve`, bit for bit: the kernels' columns
 /// hold what `Motion::of` computes (the points relative to the origin, then A, B, C from them, L).
+/// With thickness the ends of the step are candidates too, t = 0 before every other and t = 1 after: the distance
+/// at t = 0 is checked first, in SIMD, and only the rows it leaves go on to the root search (compacted); a row
+/// whose root search ends without a hit has its distance at t = 1 checked last.
 template <class Motion, class Query>
 void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) {
-  if (thickness > 0) {  // the ends of the step are candidates too: the kernel does not cover it
-    for (std::size_t i = 0; i < queries.size(); ++i) out[i] = solve(Motion::of(queries[i]), thickness);
-    return;
-  }
   constexpr std::size_t kBlock = 64, kStride = kBlock + 8;  // + 8: whole vectors past a short block's end
+  const bool thick = thickness > 0;
   alignas(64) double points[PointColumns::count * kStride];
   alignas(64) double cubic[CubicColumns::count * kStride];
   std::array<FirstRoot, kBlock> kind;
@@ -282,6 +282,9 @@ void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) 
   std::array<std::uint8_t, kBlock> more;
   std::array<AtTime, kBlock> at_root;
   std::array<double, 2 * kBlock> coords;
+  std::array<std::uint8_t, kBlock> query_of;  // row of the (compacted) columns → query of the block
+  std::array<std::uint8_t, kBlock> at_end_rows;  // rows whose answer is the distance at t = 1 (with thickness)
+  const auto set_time = [&](double t) { std::fill_n(points + kStride * PointColumns::t, kStride, t); };
   for (std::size_t b = 0; b < queries.size(); b += kBlock) {
     const std::size_t n = std::min(kBlock, queries.size() - b);
     for (std::size_t i = 0; i < n; ++i) {
@@ -294,30 +297,62 @@ void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) 
       const double L = extent(p);
       points[kStride * PointColumns::extent + i] = L;
       points[kStride * PointColumns::reach + i] = thickness + FloatTester::rel_tolerance * L;
+      query_of[i] = std::uint8_t(i);
+      out[b + i] = CcdHit{};
     }
     for (int column = 0; column < PointColumns::count; ++column)
       std::fill(points + kStride * std::size_t(column) + n, points + kStride * std::size_t(column + 1), 0.0);
-    cubic_columns(points, kStride, n, Motion::pairing, cubic);
-    first_coplanar_roots(cubic, kStride, n, FloatTester::rel_tolerance, kind.data(), root.data(), more.data());
-    std::copy_n(root.data(), n, points + kStride * PointColumns::t);
-    Motion::hits_at(points, kStride, n, at_root.data(), coords.data());
-    for (std::size_t i = 0; i < n; ++i) {
-      CcdHit& h = out[b + i];
-      h = CcdHit{};
-      if (kind[i] == FirstRoot::none) continue;
-      if (kind[i] == FirstRoot::root) {
-        if (at_root[i] == AtTime::hit) {
-          h = {true, root[i], {coords[2 * i], coords[2 * i + 1]}};
-          continue;
+    std::size_t rows = n;
+    if (thick) {  // t = 0: the hits are answered, the misses compacted into the first rows
+      set_time(0.0);
+      Motion::hits_at(points, kStride, n, at_root.data(), coords.data());
+      rows = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (at_root[i] == AtTime::hit) out[b + i] = {true, 0.0, {coords[2 * i], coords[2 * i + 1]}};
+        else if (at_root[i] == AtTime::scalar) out[b + i] = solve(Motion::of(queries[b + i]), thickness);
+        else query_of[rows++] = std::uint8_t(i);
+      }
+      if (rows < n)
+        for (int column = 0; column < PointColumns::count; ++column) {
+          double* c = points + kStride * std::size_t(column);
+          for (std::size_t r = 0; r < rows; ++r) c[r] = c[query_of[r]];
+          std::fill(c + rows, c + kStride, 0.0);
         }
-        if (at_root[i] == AtTime::miss && !more[i]) continue;
+      if (rows == 0) continue;
+    }
+    cubic_columns(points, kStride, rows, Motion::pairing, cubic);
+    first_coplanar_roots(cubic, kStride, rows, FloatTester::rel_tolerance, kind.data(), root.data(), more.data());
+    std::copy_n(root.data(), rows, points + kStride * PointColumns::t);
+    Motion::hits_at(points, kStride, rows, at_root.data(), coords.data());
+    std::size_t at_end = 0;
+    for (std::size_t r = 0; r < rows; ++r) {
+      const std::size_t i = query_of[r];
+      CcdHit& h = out[b + i];
+      // No candidate left but the end of the step (with thickness; without, no candidate left).
+      const bool ends = kind[r] == FirstRoot::none ||
+                        (kind[r] == FirstRoot::root && at_root[r] == AtTime::miss && !more[r]);
+      if (ends) {
+        if (thick) at_end_rows[at_end++] = std::uint8_t(r);
+        continue;
+      }
+      if (kind[r] == FirstRoot::root && at_root[r] == AtTime::hit) {
+        h = {true, root[r], {coords[2 * r], coords[2 * r + 1]}};
+        continue;
       }
       // What the kernels leave: the distance at the root, later candidates after a miss, the whole test.
       const Motion m = Motion::of(queries[b + i]);
-      if (kind[i] == FirstRoot::root && at_root[i] == AtTime::scalar &&
-          m.hit(root[i], thickness + FloatTester::rel_tolerance * m.L, h))
+      if (!thick && kind[r] == FirstRoot::root && at_root[r] == AtTime::scalar &&
+          m.hit(root[r], thickness + FloatTester::rel_tolerance * m.L, h))
         continue;
-      if (kind[i] == FirstRoot::scalar || more[i]) h = solve(m, thickness);
+      if (thick || kind[r] == FirstRoot::scalar || more[r]) h = solve(m, thickness);
+    }
+    if (at_end == 0) continue;
+    set_time(1.0);
+    Motion::hits_at(points, kStride, rows, at_root.data(), coords.data());
+    for (std::size_t e = 0; e < at_end; ++e) {
+      const std::size_t r = at_end_rows[e], i = query_of[r];
+      if (at_root[r] == AtTime::hit) out[b + i] = {true, 1.0, {coords[2 * r], coords[2 * r + 1]}};
+      else if (at_root[r] == AtTime::scalar) out[b + i] = solve(Motion::of(queries[b + i]), thickness);
     }
   }
 }

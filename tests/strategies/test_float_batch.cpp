@@ -108,6 +108,17 @@ TEST(FloatBatch, EverySimdTargetGivesTheScalarAnswersBitForBit) {
       EXPECT_LT(vf_hits, 5400u) << what;
       EXPECT_GT(ee_hits, 300u) << what;
       EXPECT_LT(ee_hits, 5400u) << what;
+      if (thickness == 0) continue;
+      // With thickness the batch answers at each end of the step and between them by its own routes: all occur.
+      std::array<int, 3> at{};  // hits at t = 0, between, at t = 1
+      const auto count = [&](const CcdHit& h) {
+        if (h.hit) ++at[h.toi == 0 ? 0 : h.toi == 1 ? 2 : 1];
+      };
+      for (const VertexFaceQuery& q : r.vf) count(tester.vertex_face(q));
+      for (const EdgeEdgeQuery& q : r.ee) count(tester.edge_edge(q));
+      EXPECT_GT(at[0], 100) << what;
+      EXPECT_GT(at[1], 100) << what;
+      EXPECT_GT(at[2], 20) << what;
     }
   });
 }
