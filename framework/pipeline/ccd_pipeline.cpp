@@ -137,6 +137,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   refuse_exploding_work(x_t0, x_t1);
   watch_.start(strategies_.time_limit, expected_candidates_, &progress_);  // room for contacts: TraversalDriver
   narrow_driver_.watch(&watch_);
+  narrow_driver_.begin_step();
 
   // 3–4. Traversal, its candidates into the narrow phase as they are found; then the orphan set, less the blocks
   //      that moved too little since they were last tested (orphan_certificates.hpp).
@@ -151,7 +152,7 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   end_box_rule_.record(ends_in_step_, result.counters.candidate_pairs);
 
   // 5. One order, whatever the schedule.
-  clock.serial("sort_contacts", nullptr, [&] { sort_contacts(result.contacts, sort_scratch_); });
+  clock.serial("sort_contacts", nullptr, [&] { narrow_driver_.sort_contacts_into(result.contacts, sort_scratch_); });
 
   tm.total_ms = ms_between(t_start, PhaseClock::Clock::now());
   result.traces.push_back(untraced_time(result.traces, tm.total_ms));  // serial for the schedule simulator

@@ -38,12 +38,8 @@ void NarrowDriver::run_chunk(ThreadState& s, std::size_t candidates, Gather&& ga
 
 double NarrowDriver::merge(const std::vector<PerThread<ThreadState>>& local, StepResult& result) const {
   const auto t0 = Clock::now();
-  std::size_t found = 0;
-  for (const auto& per_thread : local) found += per_thread.value.contacts.size();
-  result.contacts.reserve(result.contacts.size() + found);
   for (const auto& per_thread : local) {
     const ThreadState& s = per_thread.value;
-    result.contacts.insert(result.contacts.end(), s.contacts.begin(), s.contacts.end());
     result.counters += s.counters;
     result.tested_vf.insert(result.tested_vf.end(), s.tested_vf.begin(), s.tested_vf.end());
     result.tested_ee.insert(result.tested_ee.end(), s.tested_ee.begin(), s.tested_ee.end());
@@ -64,11 +60,20 @@ void NarrowDriver::in_parallel(std::size_t n, std::size_t chunk, bool candidates
   });
 }
 
+void NarrowDriver::begin_step() const {
+  for (PerThread<ThreadState>& state : states_) state.value.contacts.clear();
+}
+
+void NarrowDriver::sort_contacts_into(Contacts& out, ContactSortScratch& scratch) const {
+  std::vector<std::span<const Contact>> parts;
+  for (const PerThread<ThreadState>& state : states_) parts.emplace_back(state.value.contacts);
+  ccdlab::sort_contacts_into(parts, out, scratch);
+}
+
 std::vector<PerThread<NarrowDriver::ThreadState>>& NarrowDriver::thread_states() const {
   states_.resize(std::size_t(threads_));
   for (PerThread<ThreadState>& state : states_) {
     ThreadState& s = state.value;
-    s.contacts.clear();
     s.counters = {};
     s.tested_vf.clear();
     s.tested_ee.clear();

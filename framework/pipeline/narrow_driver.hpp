@@ -1,8 +1,9 @@
 #pragma once
 // Stage 4 of a step (design.md): the narrow phase on every thread. NarrowPhase (framework/narrow/) culls and
 // tests one batch; this driver cuts the work into chunks, keeps each thread's state (contacts, counters,
-// batch memory), and merges the threads' results in thread order (the final sort makes the contact set
-// independent of the schedule). It takes candidates three ways:
+// batch memory), merges the threads' counters in thread order after each loop, and at the end of the step sorts
+// the threads' contacts into the step's list (sort_contacts_into: one order whatever the schedule, each contact
+// copied once). It takes candidates three ways:
 //   InTraversal      on the traversal's own threads, as each thread hands its candidates over
 //   test_candidates  a list of candidates left over (or streamed slice by slice), in parallel chunks
 //   test_orphans     the orphan set (representatives.hpp), in parallel chunks
@@ -28,6 +29,10 @@ class NarrowDriver {
   void limit_contacts(std::uint64_t n) const {
     if (watch_) watch_->set_max_contacts(n);
   }
+  /// A step begins: the threads' contacts of the last one are dropped (their memory kept).
+  void begin_step() const;
+  /// The step's contacts, every thread's, sorted by feature identity into `out`.
+  void sort_contacts_into(Contacts& out, ContactSortScratch& scratch) const;
 
   /// One thread's state over a parallel loop: what it found and counted, and its batch memory.
   struct ThreadState {
@@ -75,11 +80,13 @@ class NarrowDriver {
   template <class Gather>
   void in_parallel(std::size_t n, std::size_t chunk, bool candidates, const char* phase, double* timing,
                    StepResult& result, Gather&& gather) const;
-  /// Appends the threads' contacts, counters and recorded pairs to `result`, in thread order; returns its ms.
+  /// Adds the threads' counters and recorded pairs to `result`, in thread order; returns its ms. Their contacts
+  /// stay with them until the step's end (sort_contacts_into).
   double merge(const std::vector<PerThread<ThreadState>>& local, StepResult& result) const;
-  /// One state per thread, emptied but keeping its memory: a dense step's contacts would otherwise grow into
-  /// fresh pages on every thread at every step (each zeroed by the kernel). A parallel loop or an InTraversal
-  /// takes them and merges them before the next one takes them again (a step runs them one after another).
+  /// One state per thread, its counters and recorded pairs emptied, its contacts those of the step so far; all
+  /// keep their memory: a dense step's contacts would otherwise grow into fresh pages on every thread at every
+  /// step (each zeroed by the kernel). A parallel loop or an InTraversal takes them and merges them before the
+  /// next one takes them again (a step runs them one after another).
   std::vector<PerThread<ThreadState>>& thread_states() const;
 
   const NarrowPhase& narrow_;

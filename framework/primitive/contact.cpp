@@ -10,35 +10,40 @@
 
 namespace ccdlab {
 
-void sort_contacts(Contacts& contacts, ContactSortScratch& scratch) {
-  const std::size_t n = contacts.size();
-  const bool packable = n <= std::numeric_limits<std::uint32_t>::max() &&
-                        std::all_of(contacts.begin(), contacts.end(), [](const Contact& c) {
-                          return c.feature_a >= 0 && c.feature_b >= 0 && std::uint8_t(c.kind) <= 1;
-                        });
+void sort_contacts_into(std::span<const std::span<const Contact>> parts, Contacts& out, ContactSortScratch& scratch) {
+  std::size_t n = 0;
+  for (const auto& part : parts) n += part.size();
+  const auto packable_one = [](const Contact& c) { return c.feature_a >= 0 && c.feature_b >= 0 && std::uint8_t(c.kind) <= 1; };
+  bool packable = n <= std::numeric_limits<std::uint32_t>::max();
+  for (const auto& part : parts) packable = packable && std::all_of(part.begin(), part.end(), packable_one);
   if (n < 256 || !packable) {
-    std::sort(contacts.begin(), contacts.end(), [](const Contact& x, const Contact& y) { return x.key() < y.key(); });
+    out.clear();
+    for (const auto& part : parts) out.insert(out.end(), part.begin(), part.end());
+    std::sort(out.begin(), out.end(), [](const Contact& x, const Contact& y) { return x.key() < y.key(); });
     return;
   }
   // The sort is serial, at the end of every step, and a contact is 56 bytes: rather than std::sort moving them
-  // around, the packed keys and their indices are radix-sorted (LSD, 11-bit digits — a 2048-entry histogram
-  // stays in L1 —, a digit equal in every key skipped; stable) and each contact moved once. The packing keeps
-  // key()'s order: kind, then feature_a, then feature_b, each in as many bits as its largest value needs.
+  // around, the packed keys and where each contact is are radix-sorted (LSD, 11-bit digits — a 2048-entry
+  // histogram stays in L1 —, a digit equal in every key skipped) and each contact copied once, from the threads'
+  // lists to its place. The packing keeps key()'s order: kind, then feature_a, then feature_b, each in as many
+  // bits as its largest value needs.
   using Keyed = ContactSortScratch::Keyed;
   std::vector<Keyed>& a = scratch.keys;
   std::vector<Keyed>& b = scratch.swap;
   a.resize(n), b.resize(n);
   std::uint32_t max_a = 0, max_b = 0;
-  for (const Contact& c : contacts) max_a = std::max(max_a, std::uint32_t(c.feature_a)), max_b = std::max(max_b, std::uint32_t(c.feature_b));
+  for (const auto& part : parts)
+    for (const Contact& c : part) max_a = std::max(max_a, std::uint32_t(c.feature_a)), max_b = std::max(max_b, std::uint32_t(c.feature_b));
   const int bits_b = std::bit_width(max_b), bits_ab = std::bit_width(max_a) + bits_b;  // ≤ 62: ids < 2³¹
   std::uint64_t any = 0, every = ~0ull;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Contact& c = contacts[i];
-    const std::uint64_t key = std::uint64_t(c.kind) << bits_ab | std::uint64_t(std::uint32_t(c.feature_a)) << bits_b |
-                              std::uint64_t(std::uint32_t(c.feature_b));
-    a[i] = {key, std::uint32_t(i)};
-    any |= key, every &= key;
-  }
+  std::size_t i = 0;
+  for (const auto& part : parts)
+    for (const Contact& c : part) {
+      const std::uint64_t key = std::uint64_t(c.kind) << bits_ab | std::uint64_t(std::uint32_t(c.feature_a)) << bits_b |
+                                std::uint64_t(std::uint32_t(c.feature_b));
+      a[i++] = {key, &c};
+      any |= key, every &= key;
+    }
   constexpr int kDigit = 11;
   constexpr std::uint64_t kMask = (1u << kDigit) - 1;
   std::vector<std::size_t>& start = scratch.histogram;
@@ -50,8 +55,14 @@ void sort_contacts(Contacts& contacts, ContactSortScratch& scratch) {
     for (const Keyed& k : a) b[start[k.key >> shift & kMask]++] = k;
     a.swap(b);
   }
+  out.resize(n);
+  for (std::size_t j = 0; j < n; ++j) out[j] = *a[j].contact;
+}
+
+void sort_contacts(Contacts& contacts, ContactSortScratch& scratch) {
   scratch.moved.assign(contacts.begin(), contacts.end());
-  for (std::size_t i = 0; i < n; ++i) contacts[i] = scratch.moved[a[i].index];
+  const std::span<const Contact> all(scratch.moved);
+  sort_contacts_into({&all, 1}, contacts, scratch);
 }
 
 void sort_contacts(Contacts& contacts) {

@@ -76,8 +76,8 @@ Vec3 contact_normal(const Contact& c, const Positions& x_t0, const Positions& x_
 /// step cost more than the sort itself (page faults).
 struct ContactSortScratch {
   struct Keyed {
-    std::uint64_t key;  ///< Contact::key() packed: kind, feature_a, feature_b, each in the bits its largest value needs
-    std::uint32_t index;
+    std::uint64_t key;       ///< Contact::key() packed: kind, feature_a, feature_b, each in the bits its largest value needs
+    const Contact* contact;  ///< where it is
   };
   std::vector<Keyed> keys, swap;
   std::vector<std::size_t> histogram;
@@ -87,6 +87,10 @@ struct ContactSortScratch {
 /// Sorts contacts by feature identity (Contact::key()).
 void sort_contacts(Contacts& contacts, ContactSortScratch& scratch);
 void sort_contacts(Contacts& contacts);
+/// The contacts of all `parts` (the threads' lists of a step), sorted by feature identity, into `out` (its
+/// contents replaced): each contact is copied once, to its place. The keys are unique within a step, so the
+/// order does not depend on how the contacts were split into parts.
+void sort_contacts_into(std::span<const std::span<const Contact>> parts, Contacts& out, ContactSortScratch& scratch);
 
 /// 64-bit FNV-1a hash of the sorted (kind, feature_a, feature_b) of all contacts: equal contact sets give
 /// equal hashes whatever the scheduler or thread count. `seed` chains hashes across steps.

@@ -1,11 +1,14 @@
 // sort_contacts: the radix sort of packed keys orders contacts exactly as comparing Contact::key() does, keeps
-// each contact whole, and falls back to the comparison sort where a key does not pack.
+// each contact whole, and falls back to the comparison sort where a key does not pack; sort_contacts_into gives
+// the same list from the contacts split into parts (the threads' lists), however they are split.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <limits>
 #include <random>
 #include <set>
+#include <span>
+#include <vector>
 #include <tuple>
 
 #include "framework/primitive/contact.hpp"
@@ -76,6 +79,31 @@ TEST(ContactSort, MeshSizedIdsPackIntoFewerDigits) {
   for (const Contact& c : contacts)
     if (b_seen.insert(c.feature_b).second) unique.push_back(c);
   expect_sorted_like_keys(unique, scratch);
+}
+
+TEST(ContactSort, PartsSortIntoTheOrderOfTheWholeWhateverTheSplit) {
+  ContactSortScratch scratch;
+  for (const std::size_t n : {0, 100, 300, 20000}) {
+    const Contacts all = random_contacts(n, std::uint32_t(n) + 3);
+    Contacts whole = all;
+    sort_contacts(whole, scratch);
+    std::mt19937 rng{std::uint32_t(n)};
+    for (const std::size_t count : {1, 2, 3, 7}) {  // parts of random sizes, some empty
+      std::vector<std::size_t> cuts{0, n};
+      for (std::size_t k = 1; k < count; ++k) cuts.push_back(n == 0 ? 0 : rng() % (n + 1));
+      std::sort(cuts.begin(), cuts.end());
+      std::vector<std::span<const Contact>> parts;
+      for (std::size_t k = 0; k + 1 < cuts.size(); ++k) parts.emplace_back(all.data() + cuts[k], cuts[k + 1] - cuts[k]);
+      Contacts out = random_contacts(5, 1);  // replaced, not appended to
+      sort_contacts_into(parts, out, scratch);
+      ASSERT_EQ(out.size(), whole.size()) << n << " in " << count;
+      for (std::size_t i = 0; i < n; ++i) {
+        ASSERT_EQ(out[i].key(), whole[i].key()) << n << " in " << count << " at " << i;
+        EXPECT_EQ(out[i].vertices, whole[i].vertices);
+        EXPECT_EQ(out[i].toi, whole[i].toi);
+      }
+    }
+  }
 }
 
 TEST(ContactSort, KeysThatDoNotPackFallBackToTheComparisonSort) {
