@@ -149,8 +149,9 @@ void offer_coplanar_times(Crossings&& crossings, Hit&& hit) {
   times.push_back(1);
   crossings(times);
   std::sort(times.begin(), times.end());
-  for (double t : times)
-    if (hit(t)) return;
+  const double* end = std::unique(times.begin(), times.end());  // a time offered twice misses twice
+  for (const double* t = times.begin(); t != end; ++t)
+    if (hit(*t)) return;
 }
 
 /// The most reliable normal of the plane holding these points (largest cross product of differences).
