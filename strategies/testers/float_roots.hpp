@@ -8,11 +8,14 @@
 // block of queries, one per lane, with the same operations in the same order as the scalar code (no fused
 // multiply-adds: both files are compiled with -ffp-contract=off), so a lane's root is the scalar tester's root
 // bit for bit. It answers only what it can decide that way; the rest goes back to the scalar tester:
-//   - none:   f has no root and no touching point in [0, 1] — no contact (thickness 0);
+//   - none:   f has no root and no touching point in [0, 1] — no contact (thickness 0; with thickness, t = 1
+//             is the only candidate left);
 //   - root:   `t` is the refined root of the first sign change, the first candidate time; the caller checks the
 //             distance there. When `more` is set, later candidates exist and a miss at `t` is not the answer;
 //   - scalar: anything else (coplanar motion, a breakpoint where f touches zero, non-finite coefficients).
-// With thickness > 0 the ends of the step are candidates too; the caller does not use this kernel then.
+// With thickness > 0 the ends of the step are candidates too, t = 0 before the kernel's and t = 1 after: the
+// caller checks the distance at t = 0 first (vertex_faces_at / edge_edges_at below) and at t = 1 where the
+// kernel's candidates end without a hit.
 #include <cstddef>
 #include <cstdint>
 
