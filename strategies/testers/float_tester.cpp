@@ -329,7 +329,7 @@ void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) 
     for (std::size_t r = 0; r < rows; ++r) {
       const std::size_t i = query_of[r];
       CcdHit& h = out[b + i];
-      // No candidate left but the end of the step (with thickness; without, no candidate left).
+      // The kernel's candidates are spent without a hit: with thickness t = 1 is left, without it nothing.
       const bool ends = kind[r] == FirstRoot::none ||
                         (kind[r] == FirstRoot::root && at_root[r] == AtTime::miss && !more[r]);
       if (ends) {
