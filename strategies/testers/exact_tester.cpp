@@ -7,6 +7,7 @@
 #include <CGAL/Algebraic_kernel_d_1.h>
 #include <CGAL/Gmpq.h>
 #include <CGAL/Gmpz.h>
+#include <CGAL/Interval_nt.h>
 
 #include <algorithm>
 #include <cmath>
@@ -74,16 +75,38 @@ std::array<PVec, 4> exact_points(const std::array<Vec3, 4>& x0, const std::array
   return out;
 }
 
-/// Exact signs of polynomials at one algebraic time t.
+/// Exact signs of polynomials at one algebraic time t. CGAL's sign_at computes a gcd with t's defining
+/// polynomial on every call (to recognise a zero); most signs asked here are not zero, and p evaluated in
+/// interval arithmetic over a narrow enclosure of t proves them without it. Only a possible zero (the interval
+/// holds 0: a contact on a feature's boundary, a point on a line) goes to the gcd. The answers are sign_at's.
 class AtTime {
  public:
-  AtTime(const AK& ak, const Root& t) : sign_at_(ak.sign_at_1_object()), t_(t) {}
-  [[nodiscard]] int sign(const Poly& p) const { return CGAL::is_zero(p) ? 0 : int(sign_at_(p, t_)); }
+  AtTime(const AK& ak, const Root& t) : ak_(ak), t_(t) {}
+  [[nodiscard]] int sign(const Poly& p) const {
+    if (CGAL::is_zero(p)) return 0;
+    if (const int s = interval_sign(p); s != 0) return s;
+    return int(ak_.sign_at_1_object()(p, t_));
+  }
   [[nodiscard]] bool is_zero(const PVec& v) const { return sign(v[0]) == 0 && sign(v[1]) == 0 && sign(v[2]) == 0; }
 
  private:
-  AK::Sign_at_1 sign_at_;
+  using I = CGAL::Interval_nt<>;  // rounds outward on every operation
+
+  /// The sign of p over an enclosure of t (Horner in intervals), 0 where the interval holds zero. The
+  /// enclosure is t narrowed to 2⁻⁶⁰ the first time it is needed (what the reported time needs anyway).
+  [[nodiscard]] int interval_sign(const Poly& p) const {
+    if (!enclosure_) {
+      const auto [lo, hi] = ak_.approximate_absolute_1_object()(t_, 60);
+      enclosure_ = I(CGAL::to_interval(lo).first, CGAL::to_interval(hi).second);
+    }
+    I v(0);
+    for (int i = p.degree(); i >= 0; --i) v = v * *enclosure_ + I(CGAL::to_interval(p[i]));
+    return v.inf() > 0 ? 1 : v.sup() < 0 ? -1 : 0;
+  }
+
+  const AK& ak_;
   const Root& t_;
+  mutable std::optional<I> enclosure_;
 };
 
 /// p on the closed segment [a, b] (a = b allowed).
@@ -127,6 +150,31 @@ void roots_in_step(const AK& ak, const Poly& p, std::vector<Root>& out) {
   for (auto& r : roots) out.push_back(r.first);
 }
 
+/// Whether p (degree ≤ 2) certainly has no zero in [0, 1]: its Bernstein coefficients there, times 2 — 2c₀,
+/// 2c₀ + c₁, 2(c₀ + c₁ + c₂) — all of one strict sign (p is their convex combination). Exact, in integers.
+bool never_zero_in_step(const Poly& p) {
+  if (CGAL::is_zero(p)) return false;
+  const auto coeff = [&](int i) { return i <= p.degree() ? p[i] : Z(0); };
+  const Z b0 = 2 * coeff(0), b1 = b0 + coeff(1), b2 = 2 * (coeff(0) + coeff(1) + coeff(2));
+  const int s = CGAL::sign(b0);
+  return s != 0 && CGAL::sign(b1) == s && CGAL::sign(b2) == s;
+}
+
+/// The times in [0, 1] where all three coordinates of v vanish (v ≢ 0), appended to `out`: the roots of its
+/// lowest-degree nonzero coordinate at which the other two vanish as well. One root isolation per event instead
+/// of three, and no time where only one coordinate is zero (such a time cannot change the predicate).
+void common_zeros(const AK& ak, const PVec& v, std::vector<Root>& out) {
+  if (std::any_of(v.begin(), v.end(), never_zero_in_step)) return;
+  const Poly* lowest = nullptr;
+  for (const Poly& c : v)
+    if (!CGAL::is_zero(c) && (lowest == nullptr || c.degree() < lowest->degree())) lowest = &c;
+  if (lowest == nullptr || lowest->degree() == 0) return;  // zero throughout, or never zero: no event time
+  std::vector<Root> roots;
+  roots_in_step(ak, *lowest, roots);
+  for (const Root& r : roots)
+    if (AtTime(ak, r).is_zero(v)) out.push_back(r);
+}
+
 ExactTester::Decision decide_points(const std::array<Vec3, 4>& x0, const std::array<Vec3, 4>& x1, bool edge_edge) {
   const std::array<PVec, 4> x = exact_points(x0, x1);
   // The coplanarity cubic f(t) = A·(B×C), with A, B, C as in interval_ccd.hpp.
@@ -157,9 +205,7 @@ ExactTester::Decision decide_points(const std::array<Vec3, 4>& x0, const std::ar
       for (int j = i + 1; j < 4; ++j)
         for (int k = j + 1; k < 4; ++k) events.push_back(cross(x[j] - x[i], x[k] - x[i]));
     if (edge_edge) events.push_back(cross(x[1] - x[0], x[3] - x[2]));
-    for (const PVec& e : events)
-      for (const Poly& c : e)
-        if (!CGAL::is_zero(c)) roots_in_step(ak, c, times);
+    for (const PVec& e : events) common_zeros(ak, e, times);
     std::sort(times.begin(), times.end());
     times.erase(std::unique(times.begin(), times.end()), times.end());
   }
