@@ -10,7 +10,10 @@
 //  * If f ≡ 0 (the four points stay coplanar: coplanar motion, parallel or collinear edges, zero-area
 //    faces, no motion), the set of contact times is closed and the predicate's truth can only change where a
 //    pair of points coincides or a triple becomes collinear; so the predicate is evaluated at t = 0, t = 1
-//    and at every root of those polynomials' coordinates. The earliest time it holds is the time of contact.
+//    and at every time one of those events happens (a common root of a difference's or cross product's three
+//    coordinates). The earliest time it holds is the time of contact.
+// Signs at an algebraic time are proven by interval evaluation over a 2⁻⁶⁰ enclosure of it where they can be;
+// only a possible zero takes CGAL's exact test (a gcd with the time's defining polynomial).
 // The predicates handle degenerate faces (a segment or a point) and degenerate edges (a point) explicitly.
 // Time of contact: the exact algebraic root, reported as a double interval [toi_lo, toi_hi] enclosing it.
 //
