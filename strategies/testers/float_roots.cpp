@@ -86,7 +86,7 @@ struct RootSearch {
   using M = hn::Mask<D>;
   Cubic<V> f;
   V lo, hi, flo, fhi, side;  // side: −1 the last step moved lo; +1 hi
-  M scalar, root, more, active;
+  M scalar, root, more, active, coplanar;
 };
 
 /// The setup of rows [i, i + lanes): coefficients, early outs, breakpoints and the first event among them.
@@ -111,9 +111,10 @@ HWY_INLINE RootSearch<D> StartSearch(D d, const double* columns, std::size_t str
   const V b = hn::Add(hn::Add(Dot(dA, Cross(dB, C0)), Dot(dA, Cross(B0, dC))), Dot(A0, Cross(dB, dC)));
   const V a = Dot(dA, Cross(dB, dC));
   const V big = hn::Max(hn::Max(hn::Abs(a), hn::Abs(b)), hn::Max(hn::Abs(c), hn::Abs(dd)));
-  // Coplanar motion, or a NaN anywhere: the scalar tester decides.
-  M scalar = hn::Not(hn::Gt(big, hn::Mul(hn::Set(d, 1e-12), f_scale)));
-  scalar = hn::Or(scalar, hn::Not(hn::IsFinite(hn::Add(hn::Add(a, b), hn::Add(c, dd)))));
+  // Coplanar motion (its own search), or a NaN anywhere (the scalar tester decides).
+  const M finite = hn::IsFinite(hn::Add(hn::Add(a, b), hn::Add(c, dd)));
+  r.coplanar = hn::And(finite, hn::Le(big, hn::Mul(hn::Set(d, 1e-12), f_scale)));
+  M scalar = hn::Or(r.coplanar, hn::Not(finite));
   const V tol = hn::Mul(hn::Set(d, rel_tolerance), f_scale);
   const V neg_tol = hn::Neg(tol);
   // Bernstein early out: all four coefficients beyond ±tol on one side.
@@ -221,7 +222,8 @@ void FirstCoplanarRoots(const double* columns, std::size_t stride, std::size_t n
       HWY_ALIGN double kind_lanes[HWY_MAX_BYTES / sizeof(double)];
       HWY_ALIGN double more_lanes[HWY_MAX_BYTES / sizeof(double)];
       hn::Store(hn::Mul(hn::Set(d, 0.5), hn::Add(r[g].lo, r[g].hi)), d, t_lanes);
-      hn::Store(hn::IfThenElse(r[g].scalar, hn::Set(d, 2.0), hn::IfThenElse(r[g].root, one, zero)), d, kind_lanes);
+      const auto kind_of = hn::IfThenElse(r[g].scalar, hn::Set(d, 2.0), hn::IfThenElse(r[g].root, one, zero));
+      hn::Store(hn::IfThenElse(r[g].coplanar, hn::Set(d, 3.0), kind_of), d, kind_lanes);
       hn::Store(hn::IfThenElse(r[g].more, one, zero), d, more_lanes);
       const std::size_t base = i + g * N;
       for (std::size_t j = 0; j < N && base + j < n; ++j) {
@@ -362,6 +364,75 @@ HWY_INLINE void AtTimes(const double* columns, std::size_t stride, std::size_t n
   }
 }
 
+/// Roots in [0, 1] of g(t) = n · ((p − a) × (b − a)): where point p crosses the line (a, b) in the plane of normal
+/// n (crossing_times in float_tester.cpp, its operations in its order).
+template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
+HWY_INLINE void CrossingTimes(D d, const MovingV<V>& p, const MovingV<V>& a, const MovingV<V>& b, const Xyz<V>& n, V& r1,
+                              M& ok1, V& r2, M& ok2) {
+  const Xyz<V> r0 = Minus(p.x0, a.x0), dr = Minus(p.dx, a.dx), e0 = Minus(b.x0, a.x0), de = Minus(b.dx, a.dx);
+  const Xyz<V> drxe0 = Cross(dr, e0), r0xde = Cross(r0, de);
+  const V c = Dot(n, Cross(r0, e0));
+  const V bq = Dot(n, Xyz<V>{hn::Add(drxe0.x, r0xde.x), hn::Add(drxe0.y, r0xde.y), hn::Add(drxe0.z, r0xde.z)});
+  const V aq = Dot(n, Cross(dr, de));
+  QuadraticRoots(d, aq, bq, c, r1, ok1, r2, ok2);
+}
+
+void CoplanarTimes(const double* points, std::size_t stride, std::size_t n, PointPairing pairing, double* times,
+                   std::uint8_t* scalar_out) {
+  using D = hn::ScalableTag<double>;
+  using V = hn::Vec<D>;
+  using M = hn::Mask<D>;
+  const D d;
+  // Which point crosses which line (PointColumns' point numbers), as VfMotion::crossings and EeMotion::crossings.
+  constexpr int kVf[3][3] = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}}, kEe[4][3] = {{0, 2, 3}, {1, 2, 3}, {2, 0, 1}, {3, 0, 1}};
+  const bool vf = pairing == PointPairing::vertex_face;
+  const int crossings = vf ? 3 : 4;
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0), inf = hn::Set(d, HUGE_VAL);
+  for (std::size_t i = 0; i < n; i += hn::Lanes(d)) {
+    const auto col = [&](int k) { return hn::LoadU(d, points + stride * std::size_t(k) + i); };
+    MovingV<V> P[4];
+    for (int k = 0; k < 4; ++k) {
+      const int c = PointColumns::P0x + 6 * k;
+      P[k] = {{col(c), col(c + 1), col(c + 2)}, {col(c + 3), col(c + 4), col(c + 5)}};
+    }
+    int slot = 0;
+    const auto put = [&](V t) { hn::StoreU(t, d, times + stride * std::size_t(slot++) + i); };
+    put(zero), put(one);
+    M scalar = hn::Ne(zero, zero);
+    for (const double end : {0.0, 1.0}) {
+      const V t = hn::Set(d, end);
+      Xyz<V> at[4];
+      for (int k = 0; k < 4; ++k) at[k] = P[k].at(t);
+      // plane_normal: the largest of the three cross products of differences from the first point, the first
+      // of equals; none (all collinear) is the scalar tester's to handle.
+      Xyz<V> normal{zero, zero, zero};
+      V normal_sq = zero;
+      constexpr int kPairs[3][2] = {{1, 2}, {1, 3}, {2, 3}};
+      for (const auto& pair : kPairs) {
+        const Xyz<V> c = Cross(Minus(at[pair[0]], at[0]), Minus(at[pair[1]], at[0]));
+        const V c_sq = Dot(c, c);
+        const M larger = hn::Gt(c_sq, normal_sq);
+        normal = {hn::IfThenElse(larger, c.x, normal.x), hn::IfThenElse(larger, c.y, normal.y),
+                  hn::IfThenElse(larger, c.z, normal.z)};
+        normal_sq = hn::IfThenElse(larger, c_sq, normal_sq);
+      }
+      scalar = hn::Or(scalar, hn::Eq(normal_sq, zero));
+      const auto& lines = vf ? kVf : kEe;
+      for (int c = 0; c < crossings; ++c) {
+        V r1, r2;
+        M ok1, ok2;
+        CrossingTimes(d, P[lines[c][0]], P[lines[c][1]], P[lines[c][2]], normal, r1, ok1, r2, ok2);
+        scalar = hn::Or(scalar, hn::Or(hn::And(ok1, hn::Eq(r1, zero)), hn::And(ok2, hn::Eq(r2, zero))));
+        put(hn::IfThenElse(ok1, r1, inf)), put(hn::IfThenElse(ok2, r2, inf));
+      }
+    }
+    while (slot < kCoplanarSlots) put(inf);
+    HWY_ALIGN double flag[HWY_MAX_BYTES / sizeof(double)];
+    hn::Store(hn::IfThenElseZero(scalar, one), d, flag);
+    for (std::size_t j = 0; j < hn::Lanes(d) && i + j < n; ++j) scalar_out[i + j] = std::uint8_t(flag[j] != 0);
+  }
+}
+
 void CubicColumnsFromPoints(const double* points, std::size_t stride, std::size_t n, PointPairing pairing, double* cubic) {
   using D = hn::ScalableTag<double>;
   const D d;
@@ -404,11 +475,17 @@ void first_coplanar_roots(const double* columns, std::size_t stride, std::size_t
 }
 
 HWY_EXPORT(CubicColumnsFromPoints);
+HWY_EXPORT(CoplanarTimes);
 HWY_EXPORT(VertexFacesAt);
 HWY_EXPORT(EdgeEdgesAt);
 
 void cubic_columns(const double* points, std::size_t stride, std::size_t n, PointPairing pairing, double* cubic) {
   if (n > 0) HWY_DYNAMIC_DISPATCH(CubicColumnsFromPoints)(points, stride, n, pairing, cubic);
+}
+
+void coplanar_times(const double* points, std::size_t stride, std::size_t n, PointPairing pairing, double* times,
+                    std::uint8_t* scalar) {
+  if (n > 0) HWY_DYNAMIC_DISPATCH(CoplanarTimes)(points, stride, n, pairing, times, scalar);
 }
 
 void vertex_faces_at(const double* columns, std::size_t stride, std::size_t n, AtTime* verdict, double* coords) {

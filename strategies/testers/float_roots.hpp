@@ -12,7 +12,9 @@
 //             is the only candidate left);
 //   - root:   `t` is the refined root of the first sign change, the first candidate time; the caller checks the
 //             distance there. When `more` is set, later candidates exist and a miss at `t` is not the answer;
-//   - scalar: anything else (coplanar motion, a breakpoint where f touches zero, non-finite coefficients).
+//   - coplanar: f ≡ 0 (every coefficient within 10⁻¹² of f_scale, all finite): coplanar motion, whose candidate
+//               times are crossings in the plane (coplanar_times below);
+//   - scalar: anything else (a breakpoint where f touches zero, non-finite coefficients).
 // With thickness > 0 the ends of the step are candidates too, t = 0 before the kernel's and t = 1 after: the
 // caller checks the distance at t = 0 first (vertex_faces_at / edge_edges_at below) and at t = 1 where the
 // kernel's candidates end without a hit.
@@ -21,7 +23,7 @@
 
 namespace ccdlab {
 
-enum class FirstRoot : std::uint8_t { none, root, scalar };
+enum class FirstRoot : std::uint8_t { none, root, scalar, coplanar };
 
 /// The root refinement, scalar and batched alike: Illinois false position until the bracket is at most
 /// kIllinoisWidth wide, at most kIllinoisSteps steps, never evaluating f closer than kIllinoisGuard to an end of
@@ -62,6 +64,16 @@ enum class PointPairing : std::uint8_t { vertex_face, edge_edge };
 /// apart, as FloatTester forms them; f_scale = L³. Both sets of columns have the same stride; readable and
 /// writable up to a multiple of 8 rows past n.
 void cubic_columns(const double* points, std::size_t stride, std::size_t n, PointPairing pairing, double* cubic);
+
+/// Coplanar motion (FirstRoot::coplanar): FloatTester's candidate times for rows [0, n) of the points' columns —
+/// t = 0, t = 1, and at each end's plane normal the times where a point crosses a line of the other feature (VF:
+/// the vertex and each face edge; EE: each endpoint and the other edge) — one slot per column of `times` (the
+/// points' stride; +∞ where a slot holds no time in [0, 1]), bit for bit the scalar tester's times. scalar[i] is
+/// set where the row is left to the scalar tester: its four points collinear at an end (no plane normal), or a
+/// crossing at t = ±0, whose place beside t = 0 in the scalar tester's sort the kernel does not mirror.
+inline constexpr int kCoplanarSlots = 18;  // 2 ends + 2 plane normals × 4 point–line pairs × 2 roots (EE)
+void coplanar_times(const double* points, std::size_t stride, std::size_t n, PointPairing pairing, double* times,
+                    std::uint8_t* scalar);
 
 /// A row's answer at its time: within reach (`hit`, with the contact's coordinates), not (`miss`), or a case the
 /// kernel leaves to the scalar function (a degenerate triangle, a point-like or parallel edge, a NaN).

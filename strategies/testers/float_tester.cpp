@@ -265,9 +265,68 @@ CcdHit solve(const Motion& m, double thickness) {
   return out;
 }
 
+/// The block's rows of coplanar motion (FirstRoot::coplanar; rows of the PointColumns `points`, query_of[row]
+/// their query in `queries` and `out`): their candidate times from coplanar_times, sorted and each kept once, then
+/// offered in that order, as offer_coplanar_times offers them (so the first hit is its), the distance at each
+/// round's times checked in SIMD for every row still open. Rows the kernels leave go to the scalar test whole.
+template <class Motion, class Query>
+void solve_coplanar(const double* points, std::size_t stride, std::span<const std::uint8_t> rows,
+                    const std::uint8_t* query_of, std::span<const Query> queries, double thickness, CcdHit* out) {
+  constexpr std::size_t kRows = 64, kStride = kRows + 8;
+  alignas(64) double columns[PointColumns::count * kStride];
+  alignas(64) double times[kCoplanarSlots * kStride];
+  std::array<std::uint8_t, kRows> scalar;
+  std::array<std::array<double, kCoplanarSlots>, kRows> sorted;  // each row's times, increasing, each once
+  std::array<std::uint8_t, kRows> count, next;                   // how many; the next one to offer
+  std::array<AtTime, kRows> verdict;
+  std::array<double, 2 * kRows> coords;
+  const std::size_t n = rows.size();
+  for (int column = 0; column < PointColumns::count; ++column) {
+    double* c = columns + kStride * std::size_t(column);
+    const double* from = points + stride * std::size_t(column);
+    for (std::size_t j = 0; j < n; ++j) c[j] = from[rows[j]];
+    std::fill(c + n, c + kStride, 0.0);
+  }
+  coplanar_times(columns, kStride, n, Motion::pairing, times, scalar.data());
+  const auto answer = [&](std::size_t j) -> CcdHit& { return out[query_of[rows[j]]]; };
+  std::size_t open = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    count[j] = next[j] = 0;
+    if (scalar[j]) {
+      answer(j) = solve(Motion::of(queries[query_of[rows[j]]]), thickness);
+      continue;
+    }
+    double* list = sorted[j].data();
+    std::size_t k = 0;
+    for (int slot = 0; slot < kCoplanarSlots; ++slot)
+      if (const double t = times[kStride * std::size_t(slot) + j]; t <= 1.0) list[k++] = t;
+    std::sort(list, list + k);
+    count[j] = std::uint8_t(std::unique(list, list + k) - list);
+    ++open;
+  }
+  double* t_column = columns + kStride * std::size_t(PointColumns::t);
+  while (open > 0) {
+    for (std::size_t j = 0; j < n; ++j)
+      if (next[j] < count[j]) t_column[j] = sorted[j][next[j]];
+    Motion::hits_at(columns, kStride, n, verdict.data(), coords.data());
+    for (std::size_t j = 0; j < n; ++j) {
+      if (next[j] == count[j]) continue;
+      const double t = sorted[j][next[j]++];
+      if (verdict[j] == AtTime::miss) {
+        if (next[j] == count[j]) --open;  // every time missed: no contact
+        continue;
+      }
+      next[j] = count[j], --open;
+      if (verdict[j] == AtTime::hit) answer(j) = {true, t, {coords[2 * j], coords[2 * j + 1]}};
+      else answer(j) = solve(Motion::of(queries[query_of[rows[j]]]), thickness);
+    }
+  }
+}
+
 /// Many queries: the root search of a block in SIMD (float_roots.hpp), then the distance at the root it found, in
-/// SIMD too (`Motion::hit` for the rows that kernel leaves), and the whole scalar test where the root search
-/// cannot decide or later candidates follow a miss. The same answers as `solve`, bit for bit: the kernels' columns
+/// SIMD too (`Motion::hit` for the rows that kernel leaves), coplanar motions by their crossing times
+/// (solve_coplanar), and the whole scalar test where the root search cannot decide or later candidates follow a
+/// miss. The same answers as `solve`, bit for bit: the kernels' columns
 /// hold what `Motion::of` computes (the points relative to the origin, then A, B, C from them, L).
 /// With thickness the ends of the step are candidates too, t = 0 before every other and t = 1 after: the distance
 /// at t = 0 is checked first, in SIMD, and only the rows it leaves go on to the root search (compacted); a row
@@ -285,6 +344,7 @@ void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) 
   std::array<double, 2 * kBlock> coords;
   std::array<std::uint8_t, kBlock> query_of;  // row of the (compacted) columns → query of the block
   std::array<std::uint8_t, kBlock> at_end_rows;  // rows whose answer is the distance at t = 1 (with thickness)
+  std::array<std::uint8_t, kBlock> coplanar_rows;  // rows whose motion is coplanar
   const auto set_time = [&](double t) { std::fill_n(points + kStride * PointColumns::t, kStride, t); };
   for (std::size_t b = 0; b < queries.size(); b += kBlock) {
     const std::size_t n = std::min(kBlock, queries.size() - b);
@@ -325,10 +385,14 @@ void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) 
     first_coplanar_roots(cubic, kStride, rows, FloatTester::rel_tolerance, kind.data(), root.data(), more.data());
     std::copy_n(root.data(), rows, points + kStride * PointColumns::t);
     Motion::hits_at(points, kStride, rows, at_root.data(), coords.data());
-    std::size_t at_end = 0;
+    std::size_t at_end = 0, coplanar = 0;
     for (std::size_t r = 0; r < rows; ++r) {
       const std::size_t i = query_of[r];
       CcdHit& h = out[b + i];
+      if (kind[r] == FirstRoot::coplanar) {
+        coplanar_rows[coplanar++] = std::uint8_t(r);
+        continue;
+      }
       // The kernel's candidates are spent without a hit: with thickness t = 1 is left, without it nothing.
       const bool ends = kind[r] == FirstRoot::none ||
                         (kind[r] == FirstRoot::root && at_root[r] == AtTime::miss && !more[r]);
@@ -347,6 +411,7 @@ void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) 
         continue;
       if (thick || kind[r] == FirstRoot::scalar || more[r]) h = solve(m, thickness);
     }
+    if (coplanar > 0) solve_coplanar<Motion>(points, kStride, {coplanar_rows.data(), coplanar}, query_of.data(), queries.subspan(b), thickness, out + b);
     if (at_end == 0) continue;
     set_time(1.0);
     Motion::hits_at(points, kStride, rows, at_root.data(), coords.data());

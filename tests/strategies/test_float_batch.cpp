@@ -1,7 +1,8 @@
 // The `float` tester's batched root search (float_roots.hpp) gives the scalar tester's answers bit for bit (hit,
 // time of contact, coordinates) on every SIMD target: on random near contacts at every scale, on exact-integer
-// queries whose cubics have roots and touching points at breakpoints, on the built-in hard cases and on the
-// shared query sets (skipped where ../shared/data is absent). The kernel's three answers are all exercised;
+// queries whose cubics have roots and touching points at breakpoints, on coplanar motions (the crossing times'
+// kernel), on the built-in hard cases and on the shared query sets (skipped where ../shared/data is absent).
+// The kernel's answers are all exercised;
 // `filtered`, which hands what its filter leaves to the batch, answers as its scalar self. The distance check at
 // the roots equals closest_point_triangle and closest_segment_segment in every region they distinguish.
 #include <gtest/gtest.h>
@@ -123,6 +124,87 @@ TEST(FloatBatch, EverySimdTargetGivesTheScalarAnswersBitForBit) {
   });
 }
 
+/// Coplanar motion (f ≡ 0), where the candidates are the times a point crosses a line in the plane: four points
+/// in a plane (axis-aligned, exactly planar, or turned, planar to rounding) moving within it at scales 1e-4 … 1e2,
+/// the first point (the vertex; edge a's first end) passing over the others' segment or beside it. The batch's
+/// coplanar kernel answers nearly all of them itself, and equals the scalar tester bit for bit on every target.
+TEST(FloatBatch, CoplanarMotionGivesTheScalarAnswersBitForBit) {
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> u(-1, 1), scale(-4, 2);
+  RandomQueries r;
+  for (int i = 0; i < 3000; ++i) {
+    const double s = std::pow(10.0, scale(rng));
+    Vec3 e1 = Vec3::UnitX(), e2 = Vec3::UnitY();
+    if (i % 3 != 0) {  // a turned plane
+      e1 = Vec3(u(rng), u(rng), u(rng)).normalized();
+      e2 = e1.unitOrthogonal();
+    }
+    const Vec3 o = Vec3(u(rng), u(rng), u(rng)) * 10 * s;
+    const auto in_plane = [&](double a, double b) { return Vec3(o + s * (a * e1 + b * e2)); };
+    std::array<Vec3, 8> p;
+    for (int k = 1; k < 4; ++k) p[k] = in_plane(u(rng), u(rng));
+    const double side = i % 2 == 0 ? 0.2 : 1.5;  // over the other features, or beside them
+    p[0] = in_plane(-side - 0.5 * std::abs(u(rng)), u(rng));
+    p[4] = in_plane(side + 0.5 * std::abs(u(rng)), u(rng));
+    for (int k = 1; k < 4; ++k) p[4 + k] = p[k] + s * 0.1 * (u(rng) * e1 + u(rng) * e2);
+    if (i % 5 == 0) p[5] = p[1];  // a still point
+    r.vf.push_back({p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7]});
+    r.ee.push_back({p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7]});
+  }
+  // The kernel's own share: rows it leaves to the scalar tester are few.
+  for (const bool vf : {true, false}) {
+    const std::size_t n = r.vf.size(), kStride = n + 8;
+    std::vector<double> columns(PointColumns::count * kStride, 0.0), times(kCoplanarSlots * kStride);
+    std::vector<std::uint8_t> scalar(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::array<Vec3, 8> q = vf ? std::array<Vec3, 8>{r.vf[i].v_t0, r.vf[i].f0_t0, r.vf[i].f1_t0, r.vf[i].f2_t0,
+                                                             r.vf[i].v_t1, r.vf[i].f0_t1, r.vf[i].f1_t1, r.vf[i].f2_t1}
+                                       : std::array<Vec3, 8>{r.ee[i].ea0_t0, r.ee[i].ea1_t0, r.ee[i].eb0_t0, r.ee[i].eb1_t0,
+                                                             r.ee[i].ea0_t1, r.ee[i].ea1_t1, r.ee[i].eb0_t1, r.ee[i].eb1_t1};
+      Box3 box;
+      for (int k = 0; k < 4; ++k) {
+        box.grow(q[k]), box.grow(q[k + 4]);
+        for (int axis = 0; axis < 3; ++axis) {
+          columns[kStride * std::size_t(PointColumns::P0x + 6 * k + axis) + i] = q[k][axis] - q[0][axis];
+          columns[kStride * std::size_t(PointColumns::dP0x + 6 * k + axis) + i] = q[k + 4][axis] - q[k][axis];
+        }
+      }
+      columns[kStride * PointColumns::extent + i] = box.extent().norm();
+    }
+    std::vector<double> cubic(CubicColumns::count * kStride);
+    cubic_columns(columns.data(), kStride, n, vf ? PointPairing::vertex_face : PointPairing::edge_edge, cubic.data());
+    test::for_each_simd_target([&](const char* target) {
+      std::vector<FirstRoot> kind(n);
+      std::vector<double> t(n);
+      std::vector<std::uint8_t> more(n);
+      first_coplanar_roots(cubic.data(), kStride, n, FloatTester::rel_tolerance, kind.data(), t.data(), more.data());
+      EXPECT_EQ(std::size_t(std::count(kind.begin(), kind.end(), FirstRoot::coplanar)), n) << target;
+      coplanar_times(columns.data(), kStride, n, vf ? PointPairing::vertex_face : PointPairing::edge_edge, times.data(),
+                     scalar.data());
+      std::size_t left = 0, crossings = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        left += scalar[i];
+        for (int slot = 2; slot < kCoplanarSlots; ++slot) crossings += times[kStride * std::size_t(slot) + i] <= 1.0;
+      }
+      EXPECT_LT(left, n / 20) << target << (vf ? " VF" : " EE");
+      EXPECT_GT(crossings, n) << target << (vf ? " VF" : " EE");
+    });
+  }
+  test::for_each_simd_target([&](const char* target) {
+    for (const double thickness : {0.0, 1e-3}) {
+      const FloatTester tester({thickness});
+      std::size_t vf_hits = 0, ee_hits = 0;
+      const std::string what = std::string(target) + " coplanar, thickness " + std::to_string(thickness);
+      expect_batch_equals_scalar(tester, r.vf, what + " VF", &vf_hits);
+      expect_batch_equals_scalar(tester, r.ee, what + " EE", &ee_hits);
+      EXPECT_GT(vf_hits, 300u) << what;
+      EXPECT_LT(vf_hits, 2700u) << what;
+      EXPECT_GT(ee_hits, 300u) << what;
+      EXPECT_LT(ee_hits, 2700u) << what;
+    }
+  });
+}
+
 TEST(FloatBatch, FilteredBatchGivesItsScalarAnswers) {
   const RandomQueries r = random_queries(3000, 23);
   const FilteredTester tester;
@@ -180,7 +262,7 @@ TEST(FloatBatch, KernelAnswersEveryKind) {
     std::vector<double> t(r.vf.size());
     std::vector<std::uint8_t> more(r.vf.size());
     first_coplanar_roots(columns.data(), kStride, r.vf.size(), FloatTester::rel_tolerance, kind.data(), t.data(), more.data());
-    std::array<int, 3> count{};
+    std::array<int, 4> count{};
     int with_more = 0;
     for (std::size_t i = 0; i < kind.size(); ++i) {
       ++count[int(kind[i])];
