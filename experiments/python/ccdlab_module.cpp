@@ -480,11 +480,11 @@ py::list run_frames(const std::vector<py::object>& frames, const Triangles& face
   const TriMesh mesh = to_mesh(x.front().size(), faces, call);
   CcdPipeline pipeline(mesh, single_cloth_body(mesh), strategies_from(options, call));
   py::list out;
+  StepResult r;  // one for every step: its contact list's memory reused
   for (std::size_t s = 0; s + 1 < x.size(); ++s) {
-    StepResult r;
     {
       py::gil_scoped_release release;  // the step runs its own threads; other Python threads may run meanwhile
-      r = pipeline.step(x[s], x[s + 1]);
+      pipeline.step(x[s], x[s + 1], r);
     }
     out.append(result_dict(r, x[s], x[s + 1]));
   }

@@ -115,6 +115,7 @@ struct Detector::Impl {
   std::optional<TriMesh> mesh;
   std::vector<ccdlab::Body> bodies;  // the given ones, or one self-colliding cloth
   std::unique_ptr<CcdPipeline> pipeline;       // step, earliest_toi
+  StepResult last_step;                        // step's result, its contact list's memory reused by the next
   std::vector<std::unique_ptr<ProximityQuery>> proximity;  // proximity, one per d̂ asked recently (kProximityQueries)
   std::unique_ptr<CcdPipeline> step_size;      // active_set_and_step at its separation
   double separation = -1;
@@ -224,7 +225,8 @@ Detector& Detector::operator=(Detector&&) noexcept = default;
 Detector::Contacts Detector::step(std::span<const Point> x0, std::span<const Point> x1) {
   return named("ccdlab::Detector::step", [&] {
     const auto [p0, p1] = impl_->frames(x0, x1);
-    const StepResult r = impl_->pipeline->step(p0, p1);
+    impl_->pipeline->step(p0, p1, impl_->last_step);
+    const StepResult& r = impl_->last_step;
     Contacts out;
     for (const ccdlab::Contact& c : r.contacts) {
       const Vec3 n = contact_normal(c, p0, p1);

@@ -89,9 +89,17 @@ double CcdPipeline::end_reach() const {
 }
 
 StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
+  StepResult result;
+  step(x_t0, x_t1, result);
+  return result;
+}
+
+void CcdPipeline::step(const Positions& x_t0, const Positions& x_t1, StepResult& result) {
   if (Index(x_t0.size()) != mesh_.num_vertices() || Index(x_t1.size()) != mesh_.num_vertices())
     fail("step: frames have {} and {} vertices, the mesh has {}", x_t0.size(), x_t1.size(), mesh_.num_vertices());
-  StepResult result;
+  Contacts kept = std::move(result.contacts);
+  result = StepResult{};
+  result.contacts = std::move(kept);  // overwritten by the sort, its memory reused
   StepTimings& tm = result.timings;
   PhaseClock clock(result);
   const auto t_start = PhaseClock::Clock::now();
@@ -158,7 +166,6 @@ StepResult CcdPipeline::step(const Positions& x_t0, const Positions& x_t1) {
   result.traces.push_back(untraced_time(result.traces, tm.total_ms));  // serial for the schedule simulator
   result.memory.peak_rss_bytes = peak_rss_bytes();
   result.memory.page_faults = minor_page_faults() - faults_at_start;
-  return result;
 }
 
 void CcdPipeline::refuse_exploding_work(const Positions& x_t0, const Positions& x_t1) {

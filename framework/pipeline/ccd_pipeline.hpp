@@ -47,6 +47,10 @@ class CcdPipeline {
 
   /// Runs one step between two frames of the mesh (same vertex count as the topology).
   StepResult step(const Positions& x_t0, const Positions& x_t1);
+  /// The same into `result`, replacing what it held but keeping its contact list's memory: a loop that passes
+  /// one StepResult to every step writes a dense step's contacts into pages already touched, where a fresh list
+  /// costs page faults (and the kernel's clearing of them) on every step.
+  void step(const Positions& x_t0, const Positions& x_t1, StepResult& result);
   /// The earliest time of contact of the step, 1.0 when there is none: the minimum over step()'s contacts,
   /// found without testing the pairs that cannot beat the best time found so far (earliest_cut.hpp). `result`,
   /// when given, receives the step's counters and timings; its contacts are those tested before the cut.
