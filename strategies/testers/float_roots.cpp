@@ -2,6 +2,7 @@
 #include "strategies/testers/float_roots.hpp"
 
 #include <algorithm>
+#include <array>
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "strategies/testers/float_roots.cpp"
@@ -89,15 +90,24 @@ struct RootSearch {
   M scalar, root, more, active, coplanar;
 };
 
-/// The setup of rows [i, i + lanes): coefficients, early outs, breakpoints and the first event among them.
+/// The cubic of rows [i, i + lanes) and what is decided before any breakpoint: coplanar motion, a NaN (left to
+/// the scalar tester), and the Bernstein early out (no root, no touching point: `none`).
 template <class D>
-HWY_INLINE RootSearch<D> StartSearch(D d, const double* columns, std::size_t stride, std::size_t i, double rel_tolerance) {
+struct Coefficients {
   using V = hn::Vec<D>;
   using M = hn::Mask<D>;
-  const V zero = hn::Zero(d), one = hn::Set(d, 1.0), inf = hn::Set(d, HUGE_VAL);
+  Cubic<V> f;
+  V a, b, c, dd, tol;
+  M coplanar, scalar, decided;
+};
+
+template <class D>
+HWY_INLINE Coefficients<D> CubicOf(D d, const double* columns, std::size_t stride, std::size_t i, double rel_tolerance) {
+  using V = hn::Vec<D>;
+  using M = hn::Mask<D>;
   const auto col = [&](int k) { return hn::LoadU(d, columns + stride * std::size_t(k) + i); };
   const auto xyz = [&](int k) { return Xyz<V>{col(k), col(k + 1), col(k + 2)}; };
-  RootSearch<D> r;
+  Coefficients<D> r;
   r.f = Cubic<V>{{xyz(CubicColumns::A0x), xyz(CubicColumns::dAx)},
                  {xyz(CubicColumns::B0x), xyz(CubicColumns::dBx)},
                  {xyz(CubicColumns::C0x), xyz(CubicColumns::dCx)}};
@@ -114,7 +124,7 @@ HWY_INLINE RootSearch<D> StartSearch(D d, const double* columns, std::size_t str
   // Coplanar motion (its own search), or a NaN anywhere (the scalar tester decides).
   const M finite = hn::IsFinite(hn::Add(hn::Add(a, b), hn::Add(c, dd)));
   r.coplanar = hn::And(finite, hn::Le(big, hn::Mul(hn::Set(d, 1e-12), f_scale)));
-  M scalar = hn::Or(r.coplanar, hn::Not(finite));
+  r.scalar = hn::Or(r.coplanar, hn::Not(finite));
   const V tol = hn::Mul(hn::Set(d, rel_tolerance), f_scale);
   const V neg_tol = hn::Neg(tol);
   // Bernstein early out: all four coefficients beyond ±tol on one side.
@@ -125,7 +135,31 @@ HWY_INLINE RootSearch<D> StartSearch(D d, const double* columns, std::size_t str
   const M above = hn::And(hn::And(hn::Gt(b0, tol), hn::Gt(b1, tol)), hn::And(hn::Gt(b2, tol), hn::Gt(b3, tol)));
   const M below =
       hn::And(hn::And(hn::Lt(b0, neg_tol), hn::Lt(b1, neg_tol)), hn::And(hn::Lt(b2, neg_tol), hn::Lt(b3, neg_tol)));
-  const M decided = hn::Or(scalar, hn::Or(above, below));
+  r.decided = hn::Or(r.scalar, hn::Or(above, below));
+  r.a = a, r.b = b, r.c = c, r.dd = dd, r.tol = tol;
+  return r;
+}
+
+/// The setup of rows [i, i + lanes): coefficients, early outs, breakpoints and the first event among them.
+template <class D>
+HWY_INLINE RootSearch<D> StartSearch(D d, const double* columns, std::size_t stride, std::size_t i, double rel_tolerance) {
+  using V = hn::Vec<D>;
+  using M = hn::Mask<D>;
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0), inf = hn::Set(d, HUGE_VAL), three = hn::Set(d, 3.0);
+  const Coefficients<D> cubic = CubicOf(d, columns, stride, i, rel_tolerance);
+  RootSearch<D> r;
+  r.f = cubic.f;
+  r.coplanar = cubic.coplanar;
+  const Cubic<V>& f = r.f;
+  const V a = cubic.a, b = cubic.b, c = cubic.c, tol = cubic.tol;
+  M scalar = cubic.scalar;
+  const M decided = cubic.decided;
+  const M none = hn::Ne(zero, zero);
+  if (hn::AllTrue(d, decided)) {  // no lane needs its breakpoints (resting contacts tested with thickness, often)
+    r.lo = r.hi = r.flo = r.fhi = r.side = zero;
+    r.scalar = scalar, r.root = r.more = r.active = none;
+    return r;
+  }
   // Breakpoints: 0, 1 and the roots of f′ = 3a t² + 2b t + c in [0, 1], sorted; a missing root sorts last as +∞.
   V r1, r2;
   M ok1, ok2;
@@ -142,7 +176,6 @@ HWY_INLINE RootSearch<D> StartSearch(D d, const double* columns, std::size_t str
     value[k] = f(hn::IfThenElse(exists[k], s[k], zero));
   }
   // The first event in order: a breakpoint where f touches zero (scalar), else the first sign change (root).
-  const M none = hn::Ne(zero, zero);
   M found = hn::Or(decided, scalar), more = none, root = none;
   V lo = zero, hi = zero, flo = zero, fhi = zero;
   for (int k = 0; k < 4; ++k) {
@@ -195,8 +228,8 @@ HWY_INLINE void IllinoisStep(D d, RootSearch<D>& r) {
   r.active = hn::AndNot(exact, hn::And(r.active, hn::Gt(hn::Sub(r.hi, r.lo), hn::Set(d, kIllinoisWidth))));
 }
 
-void FirstCoplanarRoots(const double* columns, std::size_t stride, std::size_t n, double rel_tolerance,
-                        FirstRoot* kind, double* t_out, std::uint8_t* more_out) {
+void FirstCoplanarRoots(const double* columns, std::size_t stride, std::size_t n, double rel_tolerance, FirstRoot* kind,
+                double* t_out, std::uint8_t* more_out) {
   using D = hn::ScalableTag<double>;
   const D d;
   const std::size_t N = hn::Lanes(d);
