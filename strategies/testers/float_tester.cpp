@@ -411,7 +411,9 @@ void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) 
         continue;
       if (thick || kind[r] == FirstRoot::scalar || more[r]) h = solve(m, thickness);
     }
-    if (coplanar > 0) solve_coplanar<Motion>(points, kStride, {coplanar_rows.data(), coplanar}, query_of.data(), queries.subspan(b), thickness, out + b);
+    if (coplanar > 0)
+      solve_coplanar<Motion>(points, kStride, {coplanar_rows.data(), coplanar}, query_of.data(), queries.subspan(b),
+                             thickness, out + b);
     if (at_end == 0) continue;
     set_time(1.0);
     Motion::hits_at(points, kStride, rows, at_root.data(), coords.data());
