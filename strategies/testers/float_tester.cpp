@@ -348,6 +348,7 @@ void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) 
   const auto set_time = [&](double t) { std::fill_n(points + kStride * PointColumns::t, kStride, t); };
   for (std::size_t b = 0; b < queries.size(); b += kBlock) {
     const std::size_t n = std::min(kBlock, queries.size() - b);
+    std::fill_n(out + b, n, CcdHit{});
     for (std::size_t i = 0; i < n; ++i) {
       const QueryPoints p = Motion::points(queries[b + i]);
       const Vec3& origin = *p[Motion::kOrigin];
@@ -359,7 +360,6 @@ void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) 
       points[kStride * PointColumns::extent + i] = L;
       points[kStride * PointColumns::reach + i] = thickness + FloatTester::rel_tolerance * L;
       query_of[i] = std::uint8_t(i);
-      out[b + i] = CcdHit{};
     }
     for (int column = 0; column < PointColumns::count; ++column)
       std::fill(points + kStride * std::size_t(column) + n, points + kStride * std::size_t(column + 1), 0.0);
