@@ -93,7 +93,7 @@ class AtTime {
   using I = CGAL::Interval_nt<>;  // rounds outward on every operation
 
   /// The sign of p over an enclosure of t (Horner in intervals), 0 where the interval holds zero. The
-  /// enclosure is t narrowed to 2⁻⁶⁰ the first time it is needed (what the reported time needs anyway).
+  /// enclosure is t narrowed to 2⁻⁶⁰ the first time it is needed (a contact's reported time narrows it to 2⁻⁶⁴).
   [[nodiscard]] int interval_sign(const Poly& p) const {
     if (!enclosure_) {
       const auto [lo, hi] = ak_.approximate_absolute_1_object()(t_, 60);
@@ -153,7 +153,7 @@ void roots_in_step(const AK& ak, const Poly& p, std::vector<Root>& out) {
 /// Whether p (degree ≤ 2) certainly has no zero in [0, 1]: its Bernstein coefficients there, times 2 — 2c₀,
 /// 2c₀ + c₁, 2(c₀ + c₁ + c₂) — all of one strict sign (p is their convex combination). Exact, in integers.
 bool never_zero_in_step(const Poly& p) {
-  if (CGAL::is_zero(p)) return false;
+  if (CGAL::is_zero(p) || p.degree() > 2) return false;
   const auto coeff = [&](int i) { return i <= p.degree() ? p[i] : Z(0); };
   const Z b0 = 2 * coeff(0), b1 = b0 + coeff(1), b2 = 2 * (coeff(0) + coeff(1) + coeff(2));
   const int s = CGAL::sign(b0);
