@@ -160,7 +160,7 @@ void CcdPipeline::step(const Positions& x_t0, const Positions& x_t1, StepResult&
   end_box_rule_.record(ends_in_step_, result.counters.candidate_pairs);
 
   // 5. One order, whatever the schedule.
-  clock.serial("sort_contacts", nullptr, [&] { narrow_driver_.sort_contacts_into(result.contacts, sort_scratch_); });
+  clock.parallel("sort_contacts", nullptr, [&](PhaseTrace& t) { narrow_driver_.sort_contacts_into(result.contacts, sort_scratch_, t); });
 
   tm.total_ms = ms_between(t_start, PhaseClock::Clock::now());
   result.traces.push_back(untraced_time(result.traces, tm.total_ms));  // serial for the schedule simulator

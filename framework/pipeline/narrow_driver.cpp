@@ -64,10 +64,19 @@ void NarrowDriver::begin_step() const {
   for (PerThread<ThreadState>& state : states_) state.value.contacts.clear();
 }
 
-void NarrowDriver::sort_contacts_into(Contacts& out, ContactSortScratch& scratch) const {
+void NarrowDriver::sort_contacts_into(Contacts& out, ContactSortScratch& scratch, PhaseTrace& trace) const {
   std::vector<std::span<const Contact>> parts;
   for (const PerThread<ThreadState>& state : states_) parts.emplace_back(state.value.contacts);
-  ccdlab::sort_contacts_into(parts, out, scratch);
+  const auto t0 = Clock::now();
+  double parallel_ms = 0;
+  // Each thread sorts its own list (static: part i on thread i); the merge that follows is serial.
+  const PartRunner in_parallel = [&](std::size_t n, const std::function<void(std::size_t)>& task) {
+    const auto t = Clock::now();
+    parallel_tasks(n, threads_, Distribution::static_chunks, trace, [&](std::size_t i, int) { task(i); });
+    parallel_ms += ms_since(t);
+  };
+  ccdlab::sort_contacts_into(parts, out, scratch, threads_ > 1 ? in_parallel : PartRunner{});
+  trace.serial_ms += ms_since(t0) - parallel_ms;
 }
 
 std::vector<PerThread<NarrowDriver::ThreadState>>& NarrowDriver::thread_states() const {

@@ -31,8 +31,9 @@ class NarrowDriver {
   }
   /// A step begins: the threads' contacts of the last one are dropped (their memory kept).
   void begin_step() const;
-  /// The step's contacts, every thread's, sorted by feature identity into `out`.
-  void sort_contacts_into(Contacts& out, ContactSortScratch& scratch) const;
+  /// The step's contacts, every thread's, sorted by feature identity into `out`: each thread sorts its own,
+  /// then they are merged (the merge is `trace`'s serial part).
+  void sort_contacts_into(Contacts& out, ContactSortScratch& scratch, PhaseTrace& trace) const;
 
   /// One thread's state over a parallel loop: what it found and counted, and its batch memory.
   struct ThreadState {

@@ -4,6 +4,7 @@
 #include <array>
 #include <compare>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -76,21 +77,31 @@ Vec3 contact_normal(const Contact& c, const Positions& x_t0, const Positions& x_
 /// step cost more than the sort itself (page faults).
 struct ContactSortScratch {
   struct Keyed {
-    std::uint64_t key;       ///< Contact::key() packed: kind, feature_a, feature_b, each in the bits its largest value needs
+    std::uint64_t key;       ///< Contact::key() packed: kind, feature_a, feature_b (ContactSortScratch::Part)
     const Contact* contact;  ///< where it is
   };
-  std::vector<Keyed> keys, swap;
-  std::vector<std::size_t> histogram;
+  /// One part's sorted keys. Sorted in the bits its own largest ids need, then rewritten to one layout for all
+  /// parts (kind in bit 62, feature_a in bits 31–61, feature_b in bits 0–30), which the merge compares.
+  struct Part {
+    std::vector<Keyed> keys, swap;
+    std::vector<std::size_t> histogram;
+    bool packed = false;  ///< every key packed (ids ≥ 0 and < 2³¹, a known kind); else the comparison sort
+  };
+  std::vector<Part> parts;
   std::vector<Contact> moved;
 };
 
 /// Sorts contacts by feature identity (Contact::key()).
 void sort_contacts(Contacts& contacts, ContactSortScratch& scratch);
 void sort_contacts(Contacts& contacts);
+/// Runs task(i) for every i in [0, n): in turn by default; a caller with threads runs them at once.
+using PartRunner = std::function<void(std::size_t n, const std::function<void(std::size_t)>& task)>;
 /// The contacts of all `parts` (the threads' lists of a step), sorted by feature identity, into `out` (its
-/// contents replaced): each contact is copied once, to its place. The keys are unique within a step, so the
-/// order does not depend on how the contacts were split into parts.
-void sort_contacts_into(std::span<const std::span<const Contact>> parts, Contacts& out, ContactSortScratch& scratch);
+/// contents replaced): each part's keys radix-sorted on their own (through `run_parts`, so by several threads at
+/// once), then merged, each contact copied once, to its place. The keys are unique within a step, so the order
+/// does not depend on how the contacts were split into parts.
+void sort_contacts_into(std::span<const std::span<const Contact>> parts, Contacts& out, ContactSortScratch& scratch,
+                        const PartRunner& run_parts = {});
 
 /// 64-bit FNV-1a hash of the sorted (kind, feature_a, feature_b) of all contacts: equal contact sets give
 /// equal hashes whatever the scheduler or thread count. `seed` chains hashes across steps.
