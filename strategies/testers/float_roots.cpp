@@ -2,7 +2,6 @@
 #include "strategies/testers/float_roots.hpp"
 
 #include <algorithm>
-#include <array>
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "strategies/testers/float_roots.cpp"
@@ -97,7 +96,7 @@ struct Coefficients {
   using V = hn::Vec<D>;
   using M = hn::Mask<D>;
   Cubic<V> f;
-  V a, b, c, dd, tol;
+  V a, b, c, tol;
   M coplanar, scalar, decided;
 };
 
@@ -136,7 +135,7 @@ HWY_INLINE Coefficients<D> CubicOf(D d, const double* columns, std::size_t strid
   const M below =
       hn::And(hn::And(hn::Lt(b0, neg_tol), hn::Lt(b1, neg_tol)), hn::And(hn::Lt(b2, neg_tol), hn::Lt(b3, neg_tol)));
   r.decided = hn::Or(r.scalar, hn::Or(above, below));
-  r.a = a, r.b = b, r.c = c, r.dd = dd, r.tol = tol;
+  r.a = a, r.b = b, r.c = c, r.tol = tol;
   return r;
 }
 
@@ -228,8 +227,8 @@ HWY_INLINE void IllinoisStep(D d, RootSearch<D>& r) {
   r.active = hn::AndNot(exact, hn::And(r.active, hn::Gt(hn::Sub(r.hi, r.lo), hn::Set(d, kIllinoisWidth))));
 }
 
-void FirstCoplanarRoots(const double* columns, std::size_t stride, std::size_t n, double rel_tolerance, FirstRoot* kind,
-                double* t_out, std::uint8_t* more_out) {
+void FirstCoplanarRoots(const double* columns, std::size_t stride, std::size_t n, double rel_tolerance,
+                        FirstRoot* kind, double* t_out, std::uint8_t* more_out) {
   using D = hn::ScalableTag<double>;
   const D d;
   const std::size_t N = hn::Lanes(d);
@@ -282,6 +281,14 @@ HWY_INLINE V Clamp01(D d, V x) {
   return hn::IfThenElse(hn::Lt(x, zero), zero, hn::IfThenElse(hn::Lt(one, x), one, x));
 }
 
+/// Point k of rows [i, i + lanes) of PointColumns, moving: Pk + t·dPk.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE MovingV<V> MovingPoint(D d, const double* columns, std::size_t stride, std::size_t i, int k) {
+  const auto col = [&](int c) { return hn::LoadU(d, columns + stride * std::size_t(c) + i); };
+  const int c = PointColumns::P0x + 6 * k;
+  return {{col(c), col(c + 1), col(c + 2)}, {col(c + 3), col(c + 4), col(c + 5)}};
+}
+
 /// One vector of rows' four points at their time, and what the verdicts need.
 template <class D, class V = hn::Vec<D>>
 struct PointsAt {
@@ -290,10 +297,7 @@ struct PointsAt {
   HWY_INLINE PointsAt(D d, const double* columns, std::size_t stride, std::size_t i) {
     const auto col = [&](int k) { return hn::LoadU(d, columns + stride * std::size_t(k) + i); };
     const V t = col(PointColumns::t);
-    for (int k = 0; k < 4; ++k) {
-      const int c = PointColumns::P0x + 6 * k;
-      p[k] = MovingV<V>{{col(c), col(c + 1), col(c + 2)}, {col(c + 3), col(c + 4), col(c + 5)}}.at(t);
-    }
+    for (int k = 0; k < 4; ++k) p[k] = MovingPoint(d, columns, stride, i, k).at(t);
     reach = col(PointColumns::reach);
   }
 };
@@ -422,12 +426,8 @@ void CoplanarTimes(const double* points, std::size_t stride, std::size_t n, Poin
   const int crossings = vf ? 3 : 4;
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0), inf = hn::Set(d, HUGE_VAL);
   for (std::size_t i = 0; i < n; i += hn::Lanes(d)) {
-    const auto col = [&](int k) { return hn::LoadU(d, points + stride * std::size_t(k) + i); };
     MovingV<V> P[4];
-    for (int k = 0; k < 4; ++k) {
-      const int c = PointColumns::P0x + 6 * k;
-      P[k] = {{col(c), col(c + 1), col(c + 2)}, {col(c + 3), col(c + 4), col(c + 5)}};
-    }
+    for (int k = 0; k < 4; ++k) P[k] = MovingPoint(d, points, stride, i, k);
     int slot = 0;
     const auto put = [&](V t) { hn::StoreU(t, d, times + stride * std::size_t(slot++) + i); };
     put(zero), put(one);
