@@ -50,6 +50,7 @@ class Generator {
       add_scaled("tiny-motion", c, 0x1p-40, v3(0, 0, 0), "x 2^-40");
       add_scaled("large-coordinates", c, 0x1p20, v3(0, 0, 0), "x 2^20");
       add_scaled("large-coordinates", c, 1.0, v3(0x1p20, -0x1p20, 0x1p19), "+ (2^20, -2^20, 2^19)");
+      add_sheared(c);
     }
   }
 
@@ -85,6 +86,10 @@ class Generator {
       const Vec3 back = (q[i] - shift) / scale;
       if (back != c.p[i]) return;  // not exact: the transformed query would be a different question
     }
+    add_copy(family, c, q, how);
+  }
+
+  void add_copy(const std::string& family, const Case& c, const Points& q, const std::string& how) {
     // Keep the two kinds apart: sets hold one kind of query.
     const std::string fam = family + (c.kind == ContactKind::vf ? "-vf" : "-ee");
     QuerySet& s = set(fam, c.kind);
@@ -93,6 +98,25 @@ class Generator {
     s.truth.push_back(c.truth ? 1 : 0);
     s.toi.push_back(c.truth ? c.toi : kNaN);
     s.origin.push_back(fmt::format("hard-cases/{}: {} {}", fam, c.label, how));
+  }
+
+  /// The case under the shear (x, y, z) → (x, y, x + y + z): linear and invertible, so every answer and time of
+  /// contact is the same, but the cases' axis-aligned planes and lines tilt, and all three coordinates of a
+  /// cross product or a difference are in play (the exact tester's event search sees what it sees in a mesh).
+  void add_sheared(const Case& c) {
+    Points q;
+    for (int i = 0; i < 8; ++i) {
+      const Vec3& x = c.p[i];
+      const double xy = x[0] + x[1], z = xy + x[2];
+      if (!sum_is_exact(x[0], x[1], xy) || !sum_is_exact(xy, x[2], z)) return;  // a different question
+      q[i] = v3(x[0], x[1], z);
+    }
+    add_copy("tilted", c, q, "sheared z += x + y");
+  }
+  /// a + b == s exactly (the rounding error of the sum, found by TwoSum, is zero).
+  static bool sum_is_exact(double a, double b, double s) {
+    const double bb = s - a, aa = s - bb;
+    return (a - aa) + (b - bb) == 0;
   }
 
   std::map<std::string, QuerySet> sets_;
@@ -138,6 +162,12 @@ void vertex_face_families(Generator& g) {
   // Coplanar motion: the vertex slides in the face's plane and enters through the edge x = 0 at t = 1/3.
   g.add("coplanar-motion", k, "slides in", vf(v3(-1, 0.75, 0.5), v3(2, 0.75, 0.5)), true, 1.0 / 3.0);
   g.add("coplanar-motion", k, "slides along the edge", vf(v3(-1, 0.5, 0.5), v3(2, 0.5, 0.5)), true, 1.0 / 3.0);
+  // The face deforms in its plane and its edge f0f2 sweeps over a resting vertex: the two corners' velocities
+  // differ in direction, so the time v, f0, f2 become collinear is a root of a quadratic, (7 − √17)/8.
+  g.add("coplanar-motion", k, "the face stretches over it",
+        {v3(0.25, 0.75, 0.5), F0 + v3(0.5, 0, 0), F1 + v3(0.5, 0, 0), F2 + v3(0.5, 0, 0), v3(0.25, 0.75, 0.5),
+         F0 - v3(0.5, 0, 0), F1 + v3(0.5, 0, 0), F2 + v3(0.5, -0.5, 0)},
+        true, (7 - std::sqrt(17.0)) / 8);
   for (const auto& p : perturbations()) {
     const double above = moved(0.5, p, +1), beside = moved(0.5, p, -1);
     g.add("coplanar-motion", k, "slides " + p.name + " above the plane", vf(v3(-1, 0.75, above), v3(2, 0.75, above)), false, kNaN);

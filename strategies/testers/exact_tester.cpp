@@ -14,6 +14,7 @@
 #include <mutex>
 #include <vector>
 
+#include "strategies/testers/gmp_block_pool.hpp"
 #include "strategies/testers/interval_ccd.hpp"
 
 namespace ccdlab {
@@ -160,19 +161,60 @@ bool never_zero_in_step(const Poly& p) {
   return s != 0 && CGAL::sign(b1) == s && CGAL::sign(b2) == s;
 }
 
-/// The times in [0, 1] where all three coordinates of v vanish (v ≢ 0), appended to `out`: the roots of its
-/// lowest-degree nonzero coordinate at which the other two vanish as well. One root isolation per event instead
-/// of three, and no time where only one coordinate is zero (such a time cannot change the predicate).
+/// A rational time num/den, den > 0.
+struct Rational {
+  Z num, den;
+};
+
+/// The root of a polynomial of degree 1.
+Rational root_of_linear(const Poly& g) { return g[1] > 0 ? Rational{-g[0], g[1]} : Rational{g[0], -g[1]}; }
+
+/// p(r)·denⁿ (n = deg p), by Horner in integers: zero exactly where p(r) is.
+Z scaled_value(const Poly& p, const Rational& r) {
+  Z value = p[p.degree()], den_power = r.den;
+  for (int i = p.degree() - 1; i >= 0; --i, den_power *= r.den) value = value * r.num + p[i] * den_power;
+  return value;
+}
+
+/// q = c·p for a rational c (same degree, coefficient ratios equal).
+bool proportional(const Poly& p, const Poly& q) {
+  const int d = p.degree();
+  if (q.degree() != d) return false;
+  for (int i = 0; i < d; ++i)
+    if (p[i] * q[d] != q[i] * p[d]) return false;
+  return true;
+}
+
+/// The times in [0, 1] where all three coordinates of v vanish (v ≢ 0; coordinates of degree ≤ 2, as every
+/// event's are: differences of moving points are linear, their cross products quadratic), appended to `out`. No
+/// time where only one coordinate vanishes is kept (it cannot change the predicate). Decided in integers, with
+/// at most one root isolation: take the lowest-degree coordinate p. Another coordinate q either is a multiple of
+/// p (it shares all of p's roots) or shares at most one root with it, a rational one — the root of p itself when
+/// p is linear, else of q₂·p − p₂·q (degree ≤ 1). So the common zeros are all of p's roots, when every coordinate
+/// is a multiple of p, or one rational time, checked exactly in each coordinate.
 void common_zeros(const AK& ak, const PVec& v, std::vector<Root>& out) {
   if (std::any_of(v.begin(), v.end(), never_zero_in_step)) return;
   const Poly* lowest = nullptr;
   for (const Poly& c : v)
     if (!CGAL::is_zero(c) && (lowest == nullptr || c.degree() < lowest->degree())) lowest = &c;
   if (lowest == nullptr || lowest->degree() == 0) return;  // zero throughout, or never zero: no event time
-  std::vector<Root> roots;
-  roots_in_step(ak, *lowest, roots);
-  for (const Root& r : roots)
-    if (AtTime(ak, r).is_zero(v)) out.push_back(r);
+  CGAL_precondition(std::all_of(v.begin(), v.end(), [](const Poly& c) { return c.degree() <= 2; }));
+  std::optional<Rational> only;  // the one time the coordinates so far share, unless they share all of p's roots
+  if (lowest->degree() == 1) only = root_of_linear(*lowest);
+  for (const Poly& q : v) {
+    if (&q == lowest || CGAL::is_zero(q)) continue;
+    if (!only) {  // p is quadratic, so is q
+      if (proportional(*lowest, q)) continue;
+      const Poly g = q[2] * *lowest - (*lowest)[2] * q;
+      if (g.degree() == 0) return;  // a nonzero constant: no common root
+      only = root_of_linear(g);
+      if (!CGAL::is_zero(scaled_value(*lowest, *only))) return;
+    }
+    if (!CGAL::is_zero(scaled_value(q, *only))) return;
+  }
+  if (!only) return roots_in_step(ak, *lowest, out);
+  if (!CGAL::is_negative(only->num) && only->num <= only->den)
+    out.push_back(ak.construct_algebraic_real_1_object()(Q(only->num, only->den)));
 }
 
 ExactTester::Decision decide_points(const std::array<Vec3, 4>& x0, const std::array<Vec3, 4>& x1, bool edge_edge) {
@@ -282,6 +324,8 @@ std::optional<ExactTester::Decision> without_algebra(const Query& q, const Exact
 }
 
 }  // namespace
+
+ExactTester::ExactTester(Params p) : params_(p) { recycle_gmp_blocks(); }
 
 ExactTester::Decision ExactTester::decide(const VertexFaceQuery& q) const {
   if (const auto d = without_algebra(q, params_)) return *d;

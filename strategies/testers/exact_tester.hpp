@@ -50,8 +50,9 @@ class ExactTester final : public PrimitiveTester {
     bool prefiltered = false;  ///< decided by the interval prefilter or certification (no GMP)
   };
 
-  ExactTester() = default;
-  explicit ExactTester(Params p) : params_(p) {}
+  /// Installs GMP's block pool (gmp_block_pool.hpp): construct testers before steps run on other threads.
+  ExactTester() : ExactTester(Params{}) {}
+  explicit ExactTester(Params p);
   [[nodiscard]] std::string_view name() const override { return "exact"; }
   [[nodiscard]] double thickness() const override { return 0.0; }
   [[nodiscard]] CcdHit vertex_face(const VertexFaceQuery& q) const override;

@@ -36,7 +36,7 @@ TEST(AccuracyLadder, HardCasesCoverEveryFamilyOfTheIssue) {
   for (const char* family : {"contact-at-t0", "contact-at-t1", "vertex-on-edge", "vertex-on-vertex", "coplanar-motion",
                              "zero-area-face", "no-motion", "two-roots", "edges-contact-at-t1", "edge-end-on-edge",
                              "parallel-edges", "collinear-edges", "zero-length-edge", "edges-no-motion",
-                             "tiny-motion-vf", "tiny-motion-ee", "large-coordinates-vf", "large-coordinates-ee"})
+                             "tiny-motion-vf", "tiny-motion-ee", "large-coordinates-vf", "large-coordinates-ee", "tilted-vf", "tilted-ee"})
     EXPECT_TRUE(names.count(std::string("hard-cases/") + family)) << family;
   EXPECT_GT(queries, 500u);
   EXPECT_GT(hits, 100u);
