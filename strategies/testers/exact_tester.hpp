@@ -11,11 +11,13 @@
 //    faces, no motion), the set of contact times is closed and the predicate's truth can only change where a
 //    pair of points coincides or a triple becomes collinear; so the predicate is evaluated at t = 0, t = 1
 //    and at every time one of those events happens (a common root of a difference's or cross product's three
-//    coordinates). The earliest time it holds is the time of contact.
+//    coordinates: one rational time or all roots of one coordinate, told apart in integers). The earliest time
+//    it holds is the time of contact.
 // Signs at an algebraic time are proven by interval evaluation over a 2⁻⁶⁰ enclosure of it where they can be;
 // only a possible zero takes CGAL's exact test (a gcd with the time's defining polynomial).
 // The predicates handle degenerate faces (a segment or a point) and degenerate edges (a point) explicitly.
 // Time of contact: the exact algebraic root, reported as a double interval [toi_lo, toi_hi] enclosing it.
+// GMP's blocks come from per-thread lists (gmp_block_pool.hpp), installed when the first tester is constructed.
 //
 // An interval prefilter (the certified Bernstein bound of interval_ccd.hpp, which proves "no coplanarity
 // and no crossing in [0, 1]") answers most non-colliding queries without GMP; it never changes an answer.
