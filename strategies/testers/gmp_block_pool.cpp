@@ -40,7 +40,7 @@ struct Drain {
 };
 thread_local Drain drain;
 
-/// The list for a block of `bytes`, or kLimbs + 1 … (none) when such blocks are not recycled.
+/// The list for a block of `bytes`, or 0 when blocks of that size are not recycled.
 std::size_t list_of(std::size_t bytes) {
   return bytes % kLimbBytes == 0 && bytes <= kLimbs * kLimbBytes ? bytes / kLimbBytes : 0;
 }
@@ -78,9 +78,7 @@ void release(void* p, std::size_t bytes) {
 }
 
 void* reallocate(void* p, std::size_t old_bytes, std::size_t new_bytes) {
-  if (list_of(old_bytes) == 0 && list_of(new_bytes) == 0) {
-    return checked(std::realloc(p, new_bytes));
-  }
+  if (list_of(old_bytes) == 0 && list_of(new_bytes) == 0) return checked(std::realloc(p, new_bytes));
   void* q = allocate(new_bytes);
   std::memcpy(q, p, old_bytes < new_bytes ? old_bytes : new_bytes);
   release(p, old_bytes);
