@@ -10,6 +10,14 @@
 #include <mutex>
 #include <utility>
 
+// GMP's own allocator: exported by libgmp, declared only in its internal header (gmp-impl.h). The pool replaces
+// it and nothing else: blocks of an allocator someone else installed need not be malloc's.
+extern "C" {
+void* __gmp_default_allocate(std::size_t);
+void* __gmp_default_reallocate(void*, std::size_t, std::size_t);
+void __gmp_default_free(void*, std::size_t);
+}
+
 namespace ccdlab {
 namespace {
 
@@ -87,9 +95,19 @@ void* reallocate(void* p, std::size_t old_bytes, std::size_t new_bytes) {
 
 }  // namespace
 
-void recycle_gmp_blocks() {
+bool recycle_gmp_blocks() {
   static std::once_flag once;
-  std::call_once(once, [] { mp_set_memory_functions(allocate, reallocate, release); });
+  std::call_once(once, [] {
+    void* (*a)(std::size_t) = nullptr;
+    void* (*r)(void*, std::size_t, std::size_t) = nullptr;
+    void (*f)(void*, std::size_t) = nullptr;
+    mp_get_memory_functions(&a, &r, &f);
+    if (a == __gmp_default_allocate && r == __gmp_default_reallocate && f == __gmp_default_free)
+      mp_set_memory_functions(allocate, reallocate, release);
+  });
+  void* (*a)(std::size_t) = nullptr;
+  mp_get_memory_functions(&a, nullptr, nullptr);
+  return a == allocate;
 }
 
 }  // namespace ccdlab

@@ -11,8 +11,9 @@
 // lists are freed when it ends, and a block freed after that goes straight to free.
 namespace ccdlab {
 
-/// Installs the pool as GMP's allocator (mp_set_memory_functions), once per process. Call it while no other
-/// thread is inside GMP (the exact tester does so when it is constructed, before any step runs).
-void recycle_gmp_blocks();
+/// Installs the pool as GMP's allocator (mp_set_memory_functions), once per process, where GMP still has its
+/// own (a process in which another library installed one keeps it). Call it while no other thread is inside GMP
+/// (the exact tester does so when it is constructed, before any step runs). Whether the pool is GMP's allocator.
+bool recycle_gmp_blocks();
 
 }  // namespace ccdlab

@@ -47,8 +47,8 @@ std::string power_of_three_direct(unsigned n) {
 }
 
 TEST(GmpBlockPool, RecycledBlocksKeepEveryNumberIntactAcrossThreads) {
-  recycle_gmp_blocks();
-  recycle_gmp_blocks();  // once per process: the second call changes nothing
+  ASSERT_TRUE(recycle_gmp_blocks()) << "GMP's own allocator was not recognised: the pool is not installed";
+  ASSERT_TRUE(recycle_gmp_blocks());  // once per process: the second call changes nothing
   // Numbers made on one thread and freed on another, while both threads keep computing.
   std::vector<__mpz_struct> made(64);
   for (std::size_t i = 0; i < made.size(); ++i) {
@@ -74,7 +74,7 @@ TEST(GmpBlockPool, RecycledBlocksKeepEveryNumberIntactAcrossThreads) {
 }
 
 TEST(GmpBlockPool, BlocksMoveBetweenThePoolAndMallocBothWays) {
-  recycle_gmp_blocks();
+  ASSERT_TRUE(recycle_gmp_blocks());
   void* (*allocate)(std::size_t) = nullptr;
   void* (*reallocate)(void*, std::size_t, std::size_t) = nullptr;
   void (*release)(void*, std::size_t) = nullptr;
