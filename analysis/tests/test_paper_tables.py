@@ -40,6 +40,9 @@ def test_quick_paper_tables_on_the_builtin_scene(tmp_path):
         assert t2[f"{s}_2_ms_min"].iloc[0] <= t2[f"{s}_2_ms"].iloc[0] <= t2[f"{s}_2_ms_max"].iloc[0]
     page = (out / "results.md").read_text()
     assert "## Table 1" in page and "## Table 2" in page
+    noisy = sum(int((t2[f"{s}_{n}_ms_max"] > 1.1 * t2[f"{s}_{n}_ms_min"]).sum())
+                for s in ("sequential", "phc", "front", "static") for n in (1, 2))
+    assert f"Noise: {noisy} of 16 configurations at K = 18" in page, "the rounds' spread is said on the page"
     assert "| Flamenco (49K) | 64.7 | 52.1 | 48.6 | 69.7 |" in page, "the paper's Table 1 beside ours"
     assert "374.4" in page
     assert "| skirt (" in page and "| Princess (40K) |" in page, "a simulated scene beside the paper's data of its kind"

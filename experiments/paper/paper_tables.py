@@ -173,6 +173,17 @@ def fmt_ms(v: float) -> str:
     return f"{v:,.1f}" if v >= 10 else f"{v:.2f}"
 
 
+def noise_line(t2: pd.DataFrame, spread: float = 1.10) -> str:
+    """How many of Table 2's configurations had rounds more than 10% apart: the machine's noise, said on the page."""
+    pairs = [(t2[f"{s}_{n}_ms_min"], t2[f"{s}_{n}_ms_max"]) for s in ("sequential", "phc", "front", "static")
+             for n in (1, 2)]
+    noisy = sum(int((hi > spread * lo).sum()) for lo, hi in pairs)
+    total = len(pairs) * len(t2)
+    return (f"Noise: {noisy} of {total} configurations at K = 18 had rounds more than {spread - 1:.0%} apart (the "
+            "[min–max] columns). Absolute times drift between runs of this page; compare revisions by ratios "
+            "measured in one run, A and B alternating (`../shared/tools/ab.py`).")
+
+
 def markdown(t1: pd.DataFrame, t2: pd.DataFrame, header: dict, skipped: list[str], command: str,
              scene_notes: dict[str, str], figures: dict[str, str], check: pd.DataFrame | None = None) -> str:
     rev = header["git_revision"]
@@ -195,6 +206,7 @@ def markdown(t1: pd.DataFrame, t2: pd.DataFrame, header: dict, skipped: list[str
         "simulator adds the machine's fork/join cost and each phase's task inflation measured at 2 threads, held",
         "at that value beyond (docs/results-scheduling.md: its error against measurement, and what it assumes).",
         "Every configuration of a scene found the identical contact set (bench checks it and exits 1 otherwise).",
+        noise_line(t2),
         "",
         "Scenes:",
         "",
