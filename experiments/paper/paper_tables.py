@@ -58,6 +58,7 @@ QUICK = {"drape": ["--set", "scene.resolution=24", "--set", "scene.num_frames=4"
          "simulated": ["--set", "scene.resolution=0.05", "--set", "scene.num_frames=10", "--set", "scene.first_frame=6",
                        "--set", "scene.last_frame=9"]}
 KS = [6, 14, 18, 26]
+SCHEDULERS = ("sequential", "phc", "front", "static")  # Table 2's columns, each at 1 and 2 threads
 PAPER_KIND = {"skirt": "Princess (40K)", "flamenco": "Flamenco (49K)", "cloth_ball": "Cloth-ball (92K)"}
 
 # The paper's numbers (docs: ../shared/docs/paper-summary.md), 8-core Xeon E5-2665.
@@ -77,7 +78,7 @@ def bench(cli: Path, config: str, k: int, out: Path, rounds: int, full: bool, ex
     if reuse and (out / "bench.csv").is_file() and (out / "scaling.csv").is_file():
         print(f"  k={k:<2} reused {out}", file=sys.stderr)
         return out
-    schedulers = "sequential,phc,front,static" if full else "sequential,front"
+    schedulers = ",".join(SCHEDULERS) if full else "sequential,front"
     cores = "1,2,4,8,16,32,64" if full else "1,2,8"
     out.mkdir(parents=True, exist_ok=True)
     cmd = [str(cli), "bench", str(ROOT / config), "--set", f"bv.k={k}", "--set", f"output.dir={out}",
@@ -157,7 +158,7 @@ def tables(results: dict[str, dict[int, Path]]) -> tuple[pd.DataFrame, pd.DataFr
                 continue
             entry = {"scene": scene, "triangles": header["triangles"], "steps": header["steps"],
                      "rounds": header["rounds"]}
-            for sched in ("sequential", "phc", "front", "static"):
+            for sched in SCHEDULERS:
                 for threads in (1, 2):
                     r = row(b, sched, threads)
                     entry[f"{sched}_{threads}_ms"] = r.ms_per_step
@@ -175,8 +176,7 @@ def fmt_ms(v: float) -> str:
 
 def noise_line(t2: pd.DataFrame, spread: float = 1.10) -> str:
     """How many of Table 2's configurations had rounds more than 10% apart: the machine's noise, said on the page."""
-    pairs = [(t2[f"{s}_{n}_ms_min"], t2[f"{s}_{n}_ms_max"]) for s in ("sequential", "phc", "front", "static")
-             for n in (1, 2)]
+    pairs = [(t2[f"{s}_{n}_ms_min"], t2[f"{s}_{n}_ms_max"]) for s in SCHEDULERS for n in (1, 2)]
     noisy = sum(int((hi > spread * lo).sum()) for lo, hi in pairs)
     total = len(pairs) * len(t2)
     return (f"Noise: {noisy} of {total} configurations at K = 18 had rounds more than {spread - 1:.0%} apart (the "
@@ -265,7 +265,7 @@ def markdown(t1: pd.DataFrame, t2: pd.DataFrame, header: dict, skipped: list[str
     for _, r in t2.iterrows():
         for threads in (1, 2):
             cells = [f"{fmt_ms(r[f'{s}_{threads}_ms'])} [{fmt_ms(r[f'{s}_{threads}_ms_min'])}–{fmt_ms(r[f'{s}_{threads}_ms_max'])}]"
-                     for s in ("sequential", "phc", "front", "static")]
+                     for s in SCHEDULERS]
             lines.append(f"| {r.scene} | {threads} | " + " | ".join(cells) + " |")
     if check is not None and len(check):
         lines += ["", "## The simulator against measured runs (K = 18)", "",
