@@ -4,6 +4,7 @@
 #include "strategies/builders/sah_builder.hpp"
 #include "strategies/effects/effects.hpp"
 #include "strategies/scenes/drape_fold_scene.hpp"
+#include "strategies/scenes/barrier_newton_scene.hpp"
 #include "strategies/scenes/simulated_scene.hpp"
 #include "strategies/schedulers/front_scheduler.hpp"
 #include "strategies/schedulers/phc_scheduler.hpp"
@@ -216,6 +217,30 @@ const SceneRegistry& scene_registry() {
              if (p.integer("threads") > 0) request.overrides.push_back(fmt::format("threads={}", p.integer("threads")));
              return load_simulated_frames(simulate_to_folder(request, false), int(p.integer("first_frame")),
                                           int(p.integer("last_frame")));
+           }});
+    BarrierNewtonParams b;
+    r.add({"barrier_newton", "the CCD queries of a barrier (IPC) solver: a pleated sheet dropped on a sphere, each Newton iteration's x and x + dx",
+           {{"cells", ParamType::integer, (long long)b.cells, "vertices per side of the sheet (2*(cells-1)^2 triangles)", 8, 2000},
+            {"pleats", ParamType::integer, (long long)b.pleats, "layers of the sheet's accordion fold", 1, 64},
+            {"solver_frames", ParamType::integer, (long long)b.frames, "solver frames (1/60 s each)", 1, 10000},
+            {"max_iterations", ParamType::integer, (long long)b.max_iterations, "Newton iterations per frame at most", 1, 1000},
+            {"drop_speed", ParamType::real, b.drop_speed, "the sheet's initial downward speed, m/s", 0, 100},
+            {"first_frame", ParamType::integer, 0LL, "the first recorded frame CCD steps from (query i: frames 2i, 2i+1)", 0, 1000000},
+            {"last_frame", ParamType::integer, 0LL, "the last recorded frame CCD steps to (0 = the last)", 0, 1000000},
+            {"dir", ParamType::string, std::string(), "folder of the recording (empty = results/scenes/barrier_newton-HASH)", 0, 0}},
+           [](const ParamValues& p) {
+             BarrierNewtonParams b;
+             b.cells = int(p.integer("cells"));
+             b.pleats = int(p.integer("pleats"));
+             b.frames = int(p.integer("solver_frames"));
+             b.max_iterations = int(p.integer("max_iterations"));
+             b.drop_speed = p.real("drop_speed");
+             b.dir = p.string("dir");
+             return load_simulated_frames(record_barrier_newton(b), int(p.integer("first_frame")), int(p.integer("last_frame")));
+           },
+           [](const ParamValues& p) {
+             const std::uint64_t n = std::uint64_t(p.integer("cells")) - 1;
+             return 2 * n * n + 2 * 16 * 32 + 2;  // sheet + sphere + floor
            }});
     return r;
   }();

@@ -1,259 +1,34 @@
-// A cloth falling onto a sphere resting on a floor, stepped implicitly with a log-barrier contact term (Incremental Potential Contact,
-// Li et al. 2020): each frame minimises
-//     E(x) = Σ m/(2h²)·|x − x̃|²  +  Σ springs k/2·(|xa − xb| − L)²  +  κ·Σ pairs closer than d̂ of b(d),
-//     b(d) = −(d − d̂)²·ln(d / d̂),     x̃ = x + h·v + h²·g,
-// by Newton's method. Every iteration asks ccdlab two things (Detector::active_set_and_step): the pairs closer than
-// d̂ now — the barrier's active set, with each pair's distance and closest points — and how far the Newton step may
-// go before any pair comes closer than the separation s; the line search starts below that and backtracks on E,
-// whose every evaluation asks for the pairs near the trial positions (Detector::proximity). Each frame ends with
-// ccdlab's check that no pair is closer than s; a frame that fails it stops the program (exit 1).
-//
-// The Hessian: masses, springs with their compressive part dropped (positive semi-definite), and the barrier's
-// Gauss–Newton part κ·b''(d)·∇d∇dᵀ (b'' > 0 below d̂). ∇d for a pair with closest points p (weights w of its first
-// feature's vertices) and q (weights u of the second's): ∂d/∂x = w·n and −u·n, n = (p − q) / d. A pair whose closest
-// points are a vertex and a vertex (or a vertex and an edge) is reported once per face or edge holding them; it
-// counts once (the pairs are merged by the vertices that carry weight on each side, as barrier solvers do).
+// A cloth falling onto a sphere resting on a floor, stepped implicitly with a log-barrier contact term (Incremental
+// Potential Contact, Li et al. 2020): the solver of framework/sim/barrier/barrier_solver.hpp (its comment gives the
+// energy, the Hessian and the two questions each Newton iteration asks ccdlab), on ccdlab's public API. Each frame
+// ends with ccdlab's check that no pair is closer than the separation s; a frame that fails it stops the program
+// (exit 1). The `barrier_newton` scene runs the same solver at benchmark size and keeps its CCD queries.
 #include <ccdlab/ccdlab.hpp>
 
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
-
-#include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <map>
 #include <vector>
 
-namespace {
+#include "framework/sim/barrier/barrier_solver.hpp"
 
-using Vec3 = Eigen::Vector3d;
-
-struct Scene {
-  std::vector<ccdlab::Point> x;  // cloth vertices, then the sphere's
-  int cloth_vertices = 0;
-  std::vector<ccdlab::Triangle> cloth, sphere, floor;
-  std::vector<std::array<int, 2>> springs;
-  std::vector<double> rest;
-};
-
-/// An n×n sheet of side 1 at height z0 above a sphere of radius r at the origin (stacks × slices triangles), on a
-/// floor (a square of side 3 at z = −r).
-Scene make_scene(int n, double z0, double r, int stacks, int slices) {
-  Scene s;
-  const double h = 1.0 / (n - 1);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      s.x.push_back({i * h - 0.5, j * h - 0.5, z0});
-      const int v = j * n + i;
-      if (i + 1 < n) s.springs.push_back({v, v + 1});
-      if (j + 1 < n) s.springs.push_back({v, v + n});
-      if (i + 1 < n && j + 1 < n) {
-        s.springs.push_back({v, v + n + 1}), s.springs.push_back({v + 1, v + n});  // shear
-        s.cloth.push_back({v, v + 1, v + n + 1}), s.cloth.push_back({v, v + n + 1, v + n});
-      }
-    }
-  s.cloth_vertices = n * n;
-  for (const auto& [a, b] : s.springs)
-    s.rest.push_back(std::hypot(s.x[a][0] - s.x[b][0], s.x[a][1] - s.x[b][1], s.x[a][2] - s.x[b][2]));
-  // The sphere: two poles and (stacks − 1) rings.
-  const double pi = std::acos(-1.0);
-  std::vector<ccdlab::Point> ball{{0, 0, r}};
-  for (int k = 1; k < stacks; ++k)
-    for (int l = 0; l < slices; ++l) {
-      const double th = pi * k / stacks, ph = 2 * pi * l / slices;
-      ball.push_back({r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph), r * std::cos(th)});
-    }
-  ball.push_back({0, 0, -r});
-  const int south = int(ball.size()) - 1;
-  const auto ring = [&](int k, int l) { return 1 + (k - 1) * slices + (l % slices); };
-  for (int l = 0; l < slices; ++l) {
-    s.sphere.push_back({0, ring(1, l), ring(1, l + 1)});
-    for (int k = 1; k + 1 < stacks; ++k) {
-      s.sphere.push_back({ring(k, l), ring(k + 1, l), ring(k + 1, l + 1)});
-      s.sphere.push_back({ring(k, l), ring(k + 1, l + 1), ring(k, l + 1)});
-    }
-    s.sphere.push_back({south, ring(stacks - 1, l + 1), ring(stacks - 1, l)});
-  }
-  s.x.insert(s.x.end(), ball.begin(), ball.end());
-  for (const ccdlab::Point& p : {ccdlab::Point{-1.5, -1.5, -r}, {1.5, -1.5, -r}, {1.5, 1.5, -r}, {-1.5, 1.5, -r}}) s.x.push_back(p);
-  s.floor = {{0, 1, 2}, {0, 2, 3}};
-  return s;
-}
-
-Vec3 at(const std::vector<ccdlab::Point>& x, int v) { return {x[v][0], x[v][1], x[v][2]}; }
-
-/// One barrier pair: the vertices and the weight each carries in ∇d (p's positive, q's negative), and d.
-struct BarrierPair {
-  std::array<int, 4> v;
-  std::array<double, 4> w;
-  double d;
-  Vec3 n;  // (p − q) / d
-};
-
-/// The active set as barrier pairs, each primitive pair once (merged by the vertices that carry weight).
-std::vector<BarrierPair> barrier_pairs(const ccdlab::Detector::Proximities& near, const std::vector<ccdlab::Point>& x) {
-  std::map<std::array<int, 8>, BarrierPair> merged;
-  const auto add = [&](const std::array<int, 4>& v, const std::array<double, 4>& w, int first_side) {
-    BarrierPair b{v, w, 0, Vec3::Zero()};
-    Vec3 p = Vec3::Zero(), q = Vec3::Zero();
-    for (int i = 0; i < 4; ++i) (i < first_side ? p : q) += std::abs(w[i]) * at(x, v[i]);
-    b.d = (p - q).norm();
-    b.n = (p - q) / b.d;
-    std::array<int, 8> key;  // the weighted vertices of each side, sorted; the two sides in order
-    std::array<int, 4> a{-1, -1, -1, -1}, c{-1, -1, -1, -1};
-    for (int i = 0, na = 0, nc = 0; i < 4; ++i)
-      if (w[i] != 0) (i < first_side ? a[na++] : c[nc++]) = v[i];
-    std::sort(a.begin(), a.end()), std::sort(c.begin(), c.end());
-    if (c < a) std::swap(a, c);
-    std::copy(a.begin(), a.end(), key.begin()), std::copy(c.begin(), c.end(), key.begin() + 4);
-    merged.emplace(key, b);
-  };
-  for (const auto& p : near.vf) {
-    const double w1 = p.coords[0], w2 = p.coords[1];
-    add(p.vertices, {1, -(1 - w1 - w2), -w1, -w2}, 1);
-  }
-  for (const auto& p : near.ee) {
-    const double s = p.coords[0], t = p.coords[1];
-    add(p.vertices, {1 - s, s, -(1 - t), -t}, 2);
-  }
-  std::vector<BarrierPair> out;
-  for (auto& [key, b] : merged) out.push_back(b);
-  return out;
-}
-
-struct Solver {
-  Scene& scene;
-  ccdlab::Detector& detector;
-  double h = 1.0 / 60, mass, k = 2e3, kappa = 1e2, dhat = 5e-3, separation = 5e-4;
-  Vec3 gravity{0, 0, -9.81};
-  std::vector<ccdlab::Point> xt;  // x̃
-
-  int dofs() const { return 3 * scene.cloth_vertices; }
-
-  static double barrier(double d, double dhat) { return -(d - dhat) * (d - dhat) * std::log(d / dhat); }
-  static double barrier_1(double d, double dhat) { return -2 * (d - dhat) * std::log(d / dhat) - (d - dhat) * (d - dhat) / d; }
-  static double barrier_2(double d, double dhat) {
-    return -2 * std::log(d / dhat) - 4 * (d - dhat) / d + (d - dhat) * (d - dhat) / (d * d);
-  }
-
-  double elastic_energy(const std::vector<ccdlab::Point>& x) const {
-    double e = 0;
-    for (int i = 0; i < scene.cloth_vertices; ++i) e += mass / (2 * h * h) * (at(x, i) - at(xt, i)).squaredNorm();
-    for (std::size_t s = 0; s < scene.springs.size(); ++s) {
-      const double l = (at(x, scene.springs[s][0]) - at(x, scene.springs[s][1])).norm() - scene.rest[s];
-      e += k / 2 * l * l;
-    }
-    return e;
-  }
-  /// E at x, given the pairs near x.
-  double energy(const std::vector<ccdlab::Point>& x, const ccdlab::Detector::Proximities& near) const {
-    double e = elastic_energy(x);
-    for (const BarrierPair& b : barrier_pairs(near, x)) e += kappa * barrier(b.d, dhat);
-    return e;
-  }
-
-  /// Gradient and Hessian (PSD) of E at x with the active set `pairs`; obstacle vertices are fixed (no dofs).
-  void derivatives(const std::vector<ccdlab::Point>& x, const std::vector<BarrierPair>& pairs, Eigen::VectorXd& g,
-                   Eigen::SparseMatrix<double>& H) const {
-    g = Eigen::VectorXd::Zero(dofs());
-    std::vector<Eigen::Triplet<double>> t;
-    const auto block = [&](int a, int b, const Eigen::Matrix3d& m) {
-      if (a >= scene.cloth_vertices || b >= scene.cloth_vertices) return;
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) t.emplace_back(3 * a + r, 3 * b + c, m(r, c));
-    };
-    for (int i = 0; i < scene.cloth_vertices; ++i) {
-      g.segment<3>(3 * i) += mass / (h * h) * (at(x, i) - at(xt, i));
-      block(i, i, mass / (h * h) * Eigen::Matrix3d::Identity());
-    }
-    for (std::size_t s = 0; s < scene.springs.size(); ++s) {
-      const auto [a, b] = scene.springs[s];
-      const Vec3 d = at(x, a) - at(x, b);
-      const double l = d.norm(), L = scene.rest[s];
-      const Vec3 u = d / l;
-      g.segment<3>(3 * a) += k * (l - L) * u, g.segment<3>(3 * b) -= k * (l - L) * u;
-      const Eigen::Matrix3d m = k * (u * u.transpose() + std::max(0.0, 1 - L / l) * (Eigen::Matrix3d::Identity() - u * u.transpose()));
-      block(a, a, m), block(b, b, m), block(a, b, -m), block(b, a, -m);
-    }
-    for (const BarrierPair& p : pairs) {
-      const double d1 = kappa * barrier_1(p.d, dhat), d2 = kappa * barrier_2(p.d, dhat);
-      for (int i = 0; i < 4; ++i) {
-        if (p.w[i] == 0 || p.v[i] >= scene.cloth_vertices) continue;
-        g.segment<3>(3 * p.v[i]) += d1 * p.w[i] * p.n;
-        for (int j = 0; j < 4; ++j)
-          if (p.w[j] != 0) block(p.v[i], p.v[j], d2 * p.w[i] * p.w[j] * p.n * p.n.transpose());
-      }
-    }
-    H.resize(dofs(), dofs());
-    H.setFromTriplets(t.begin(), t.end());
-  }
-
-  struct FrameReport {
-    int iterations = 0;
-    std::size_t active = 0;
-  };
-
-  /// One implicit step of the cloth; v updated from the motion.
-  FrameReport step(std::vector<ccdlab::Point>& x, std::vector<Vec3>& v) {
-    xt = x;
-    for (int i = 0; i < scene.cloth_vertices; ++i)
-      for (int c = 0; c < 3; ++c) xt[i][c] += h * v[i][c] + h * h * gravity[c];
-    const std::vector<ccdlab::Point> start = x;
-    FrameReport report;
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
-    ccdlab::Detector::Proximities near = detector.proximity(x, dhat);  // then those of each accepted trial
-    for (; report.iterations < 50; ++report.iterations) {
-      // The Newton direction at x, from the pairs near x.
-      const std::vector<BarrierPair> pairs = barrier_pairs(near, x);
-      report.active = pairs.size();
-      Eigen::VectorXd g;
-      Eigen::SparseMatrix<double> H;
-      derivatives(x, pairs, g, H);
-      solver.compute(H);
-      const Eigen::VectorXd dx = solver.solve(-g);
-      if (dx.lpNorm<Eigen::Infinity>() < 1e-3 * h) break;  // converged: no vertex would change its speed by 1 mm/s
-      // How far it may go: the collision-free step size for the separation (with the active set at x, for E(x)),
-      // then backtracking on E, every trial's pairs from the proximity query.
-      std::vector<ccdlab::Point> target = x;
-      for (int i = 0; i < scene.cloth_vertices; ++i)
-        for (int c = 0; c < 3; ++c) target[i][c] += dx[3 * i + c];
-      const ccdlab::Detector::ActiveSetAndStep line = detector.active_set_and_step(x, target, dhat, separation);
-      double alpha = line.step_size >= 1 ? 1.0 : 0.9 * line.step_size;  // short of the separation, where it binds
-      const double e0 = energy(x, line.active), slope = g.dot(dx);
-      std::vector<ccdlab::Point> trial = x;
-      for (int tries = 0;; ++tries) {
-        for (int i = 0; i < scene.cloth_vertices; ++i)
-          for (int c = 0; c < 3; ++c) trial[i][c] = x[i][c] + alpha * dx[3 * i + c];
-        near = detector.proximity(trial, dhat);
-        if (energy(trial, near) <= e0 + 1e-4 * alpha * slope || tries == 30) break;
-        alpha /= 2;
-      }
-      x = trial;
-    }
-    for (int i = 0; i < scene.cloth_vertices; ++i) v[i] = (at(x, i) - at(start, i)) / h;
-    return report;
-  }
-};
-
-}  // namespace
+namespace bc = ccdlab::barrier;
 
 int main(int argc, char** argv) try {
   const auto started = std::chrono::steady_clock::now();
-  Scene scene = make_scene(24, 0.35, 0.25, 12, 24);
+  bc::ClothScene scene = bc::make_sheet_over_sphere(24, 0.35, 0.25, 12, 24);
   const int sphere_vertices = int(scene.x.size()) - scene.cloth_vertices - 4;
   const std::vector<ccdlab::Detector::Body> bodies{{scene.cloth, scene.cloth_vertices, false, true, "cloth"},
                                                    {scene.sphere, sphere_vertices, true, false, "sphere"},
                                                    {scene.floor, 4, true, false, "floor"}};
   ccdlab::Detector detector(bodies);  // one thread: at 1,500 triangles a query takes well under a millisecond
-  Solver solver{scene, detector};
+  bc::Solver<ccdlab::Detector> solver{scene, detector};
   solver.mass = 0.2 / scene.cloth_vertices;  // a 200 g sheet
-  std::vector<ccdlab::Point> x = scene.x;
-  std::vector<Vec3> v(scene.cloth_vertices, Vec3::Zero());
+  std::vector<bc::Point> x = scene.x;
+  std::vector<bc::Vec3> v(scene.cloth_vertices, bc::Vec3::Zero());
   const int frames = argc > 1 ? std::atoi(argv[1]) : 60;
   for (int frame = 0; frame < frames; ++frame) {
-    const Solver::FrameReport r = solver.step(x, v);
+    const auto r = solver.step(x, v);
     // The check: no pair of the frame closer than the separation.
     const ccdlab::Detector::Proximities too_close = detector.proximity(x, solver.separation);
     const ccdlab::Detector::Proximities near = detector.proximity(x, solver.dhat);

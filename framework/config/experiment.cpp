@@ -223,7 +223,7 @@ void read_strategy_section(const YamlReader& r, const YAML::Node& root, const Re
     if (const std::string expected = check(value); !expected.empty()) r.error(node, key, expected);
     return int(value);
   };
-  const auto named = [&](const YAML::Node& node, const char* key, const auto& values) {
+  const auto named = [&](const YAML::Node& node, const std::string& key, const auto& values) {
     const auto v = values.find(r.string(node, key));
     if (!v) r.error(node, key, values.expected());
     return *v;
@@ -252,9 +252,14 @@ void read_strategy_section(const YamlReader& r, const YAML::Node& root, const Re
   }
   if (root["normal_cones"]) c.normal_cones = r.boolean(root["normal_cones"], "normal_cones");
   if (const YAML::Node n = root["narrow"]) {
-    r.check_keys(n, "narrow", {"mode", "representative"});
+    r.check_keys(n, "narrow", {"mode", "representative", "rules"});
     if (const YAML::Node m = n["mode"]) c.narrow.mode = named(m, "narrow.mode", kNarrowModes);
     if (const YAML::Node m = n["representative"]) c.narrow.representative = named(m, "narrow.representative", kRepresentativeRules);
+    if (const YAML::Node rules = n["rules"]) {
+      r.check_keys(rules, "narrow.rules", {"triangles", "sixteenths", "proximity", "orphan_carry", "certificates"});
+      for (const auto& [key, choice] : stage_rule_settings(c.narrow.rules))
+        if (const YAML::Node m = rules[key]) *choice = named(m, "narrow.rules." + std::string(key), kPassChoices);
+    }
   }
   if (const YAML::Node n = root["threads"])
     c.threads = checked(n, "threads", r.integer(n, "threads", -1e18, 1e18), setting_check::threads);
@@ -286,7 +291,9 @@ nlohmann::json to_json(const PipelineConfig& c) {
   j["hierarchy"] = params_json(c.hierarchy);
   j["restructure"] = {{"threshold", c.restructure_threshold}};
   j["normal_cones"] = c.normal_cones;
-  j["narrow"] = {{"mode", to_string(c.narrow.mode)}, {"representative", to_string(c.narrow.representative)}};
+  nlohmann::json rules = nlohmann::json::object();
+  for (const auto& [key, choice] : stage_rule_settings(const_cast<StageRuleChoices&>(c.narrow.rules))) rules[key] = to_string(*choice);
+  j["narrow"] = {{"mode", to_string(c.narrow.mode)}, {"representative", to_string(c.narrow.representative)}, {"rules", rules}};
   j["scheduler"] = params_json(c.scheduler);
   j["threads"] = c.threads;
   j["memory_limit"] = c.memory_limit;

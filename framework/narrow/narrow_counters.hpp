@@ -37,8 +37,10 @@ struct NarrowCounters {
   std::uint64_t gather_ns = 0;  ///< feature pairs of candidate face pairs (representative rule)
   std::uint64_t kdop_ns = 0;    ///< stage 1
   std::uint64_t plane_ns = 0;   ///< stage 2 (staging the coordinates included)
-  std::uint64_t split_ns = 0;   ///< stage 3
-  std::uint64_t proximity_ns = 0;  ///< stage 4
+  std::uint64_t split_ns = 0;   ///< stage 3's halves and its compactions
+  std::uint64_t sixteenths_ns = 0;  ///< stage 3's sixteenths (their input's compaction included)
+  std::uint64_t proximity_ns = 0;  ///< stage 4's own test
+  std::uint64_t orphan_motion_ns = 0;  ///< the orphan certificates' motion pass (serial, before the orphan loop)
   std::uint64_t test_ns = 0;    ///< elementary tests and contact records
 
   NarrowCounters& operator+=(const NarrowCounters& o) {
@@ -46,7 +48,8 @@ struct NarrowCounters {
     orphans_culled += o.orphans_culled, orphans_unmoved += o.orphans_unmoved, orphans_carried += o.orphans_carried, candidates_gathered += o.candidates_gathered;
     triangle_tested += o.triangle_tested, triangle_culled += o.triangle_culled, triangle_fine += o.triangle_fine, triangle_ns += o.triangle_ns;
     kdop_culled += o.kdop_culled, plane_culled += o.plane_culled;
-    split_culled += o.split_culled, split_ns += o.split_ns;
+    split_culled += o.split_culled, split_ns += o.split_ns, sixteenths_ns += o.sixteenths_ns;
+    orphan_motion_ns += o.orphan_motion_ns;
     sixteenths_tested += o.sixteenths_tested, sixteenths_culled += o.sixteenths_culled;
     proximity_tested += o.proximity_tested, proximity_culled += o.proximity_culled;
     proximity_ns += o.proximity_ns;

@@ -17,13 +17,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// The candidates carry the orphans (Representatives::append_pairs) in a step expected to gather at most this
-/// many candidates per orphan: the last step's candidates, less the share stage 0 culled when it last ran if it
-/// runs in this one. A gathered candidate then checks two signatures, now and then reads a list, and brings the
-/// orphans it carries into the batch; an orphan left in the set costs its stage 1 and, when that keeps it,
-/// stages 2–4 (docs/appendix-narrow-phase.md, "The candidates carry the orphans"). A rule per step from whole-step
-/// counts, as stage 0's.
-constexpr double kCarryPays = 0.25;
 std::uint64_t ns_since(Clock::time_point t) {
   return std::uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t).count());
 }
@@ -72,68 +65,26 @@ void compact(FeatureBatch& batch, const std::vector<std::uint8_t>& keep) {
 
 }  // namespace
 
-void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& bounds, bool end_boxes) {
+StepPossible NarrowPhase::possible() const {
+  const bool batched = options_.mode == NarrowMode::batched, reach = tester_.cull_reach().has_value();
+  // Forced on, the candidates carry the orphans in scalar mode too (the tests compare the two).
+  const bool carry = reps_.carries_orphans() && (batched || options_.rules.orphan_carry == PassChoice::on);
+  return {.triangles = batched && reach, .culling = batched && reach, .carry = carry, .certificates = batched};
+}
+
+void NarrowPhase::begin_step(const Positions& x_t0, const Positions& x_t1, const FeatureBounds& bounds, const StepPlan& plan) {
   x_t0_ = &x_t0;
   x_t1_ = &x_t1;
   motionless_ = &x_t0 == &x_t1;
   bounds_ = &bounds;
-  triangle_stage_ = options_.mode == NarrowMode::batched && tester_.cull_reach() && triangle_rule_.runs(steps_);
-  triangle_box_pass_ = !end_boxes;
-  sixteenths_stage_ = sixteenths_rule_.runs(steps_);
-  proximity_stage_ = proximity_rule_.runs(steps_) && (sixteenths_stage_ || motionless_);
+  const StepPossible can = possible();
+  triangle_stage_ = can.triangles && plan.triangles;
+  triangle_box_pass_ = !plan.end_boxes;
+  sixteenths_stage_ = plan.sixteenths;
+  proximity_stage_ = plan.proximity || motionless_;  // without motion stage 4 is the only window test there is
+  carry_orphans_ = can.carry && plan.carry;
+  certificates_in_step_ = can.certificates && plan.certificates && !carry_orphans_;
   if (triangle_stage_) float_frames_.update(x_t0.data(), x_t1.data(), x_t0.size(), mesh_.faces(), triangle_box_pass_);
-  const OrphanSet& orphans = reps_.orphans();
-  switch (options_.carry_orphans) {
-    case OrphanCarry::always: carry_orphans_ = reps_.carries_orphans(); break;
-    case OrphanCarry::never: carry_orphans_ = false; break;
-    case OrphanCarry::when_it_pays:
-      carry_orphans_ = options_.mode == NarrowMode::batched && reps_.carries_orphans() && steps_ > 0 &&
-                       double(last_candidates_) * (triangle_stage_ ? 1 - triangle_cull_rate_ : 1) <=
-                           kCarryPays * double(orphans.vf.size() + orphans.ee.size());
-  }
-}
-
-double counted_work_per_candidate(const NarrowCounters& c, std::size_t faces, double test_cost) {
-  const std::uint64_t candidates = c.candidates_gathered + c.triangle_culled;
-  if (candidates == 0) return 0;
-  const auto less = [](std::uint64_t a, std::uint64_t b) { return a - std::min(a, b); };
-  const std::uint64_t s1 = c.vf_pairs + c.ee_pairs, s2 = less(s1, c.kdop_culled), s3 = less(s2, c.plane_culled),
-                      s4 = c.proximity_tested;
-  const double stage0 = c.triangle_tested == 0 ? 0.0
-                                               : StageNs::frames * double(faces) + StageNs::box_pass * double(c.triangle_tested) +
-                                                     StageNs::fine_pass * double(c.triangle_fine);
-  const double work = stage0 + StageNs::gather * double(c.candidates_gathered) + StageNs::kdop * double(s1) +
-                      StageNs::plane * double(s2) + StageNs::halves * double(s3) +
-                      StageNs::sixteenths * double(c.sixteenths_tested) + StageNs::proximity * double(s4) +
-                      StageNs::test * test_cost * double(c.vf_tests + c.ee_tests);
-  return work / double(candidates);
-}
-
-bool TriangleStageRule::runs(std::uint64_t step) const {
-  const std::uint64_t phase = step % kRemeasure;
-  if (phase == 3) return false;        // measures the work without it
-  if (work_without_ < 0) return true;  // until that has been measured
-  if (phase == 2) return true;         // measures the work with it
-  return work_with_ < work_without_;
-}
-
-void TriangleStageRule::record(bool ran, const NarrowCounters& step, std::size_t faces, double test_cost) {
-  if (step.candidates_gathered + step.triangle_culled > 0)
-    (ran ? work_with_ : work_without_) = counted_work_per_candidate(step, faces, test_cost);
-}
-
-void NarrowPhase::end_step(const NarrowCounters& step) {
-  if (step.triangle_tested > 0) triangle_cull_rate_ = double(step.triangle_culled) / double(step.triangle_tested);
-  if (options_.mode == NarrowMode::batched) {
-    triangle_rule_.record(triangle_stage_, step, mesh_.faces().size(), tester_.relative_test_cost());
-    const double test_cost = tester_.relative_test_cost();
-    const double stage4 = proximity_rule_.net_saving(step.proximity_tested, step.proximity_culled, test_cost);
-    sixteenths_rule_.record(step.sixteenths_tested, step.sixteenths_culled, test_cost, std::max(0.0, stage4));
-    proximity_rule_.record(step.proximity_tested, step.proximity_culled, test_cost);
-  }
-  last_candidates_ = step.candidates_gathered + step.triangle_culled;
-  if (certify_orphans_) certificates_.record(step.orphans_unmoved, reps_.orphans().vf.size() + reps_.orphans().ee.size());
-  ++steps_;
 }
 
 void NarrowPhase::gather(std::span<const FacePair> candidates, NarrowScratch& scratch, NarrowCounters& c,
@@ -159,11 +110,13 @@ void NarrowPhase::gather(std::span<const FacePair> candidates, NarrowScratch& sc
   c.orphans_carried += reps_.append_pairs(scratch.candidates, batch.vf, batch.ee, true, carry_orphans_);
 }
 
-void NarrowPhase::begin_orphans(const Positions& x_t0, const Positions& x_t1) {
-  // Only steps whose orphan loop tests the whole set can use them (gather_orphans), and only where they pay.
-  certify_orphans_ = options_.mode == NarrowMode::batched && !carry_orphans_ && certificates_.pay(steps_);
+std::uint64_t NarrowPhase::begin_orphans(const Positions& x_t0, const Positions& x_t1) {
+  // Only steps whose orphan loop tests the whole set can use them (gather_orphans), as the plan says.
+  const auto t = Clock::now();
+  certify_orphans_ = certificates_in_step_;
   if (certify_orphans_) certificates_.begin_step(x_t0, x_t1, tester_.thickness());
   else certificates_.forget();
+  return ns_since(t);
 }
 
 void NarrowPhase::gather_orphans(std::size_t b, std::size_t e, FeatureBatch& batch, NarrowCounters& c,
@@ -320,7 +273,7 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   const auto t_split = Clock::now();
   c.plane_ns += ns_since(t);
   // Stage 3 on stage 2's survivors, from the coefficients, threshold and reach stage 2 left in the rows: halves,
-  // then, in the steps where they pay (CullPassRule), sixteenths on what the halves keep, within the halves they
+  // then, in the steps the rules choose (rules/stage_rules.hpp), sixteenths on what the halves keep, within the halves they
   // left open (split_filter.hpp); the last pass leaves each row's open windows for stage 4.
   std::size_t kept_vf = 0, rows = 0;
   // Without motion (the proximity query) every window of the step is the same instant, which stage 2 has already
@@ -331,6 +284,7 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
     if (compact_now) scratch.keep.assign(rows, 1);  // else: stage 2's flags
     scratch.open.assign(rows, 1);
   }
+  auto t_sixteenths = t_split;  // where the sixteenths' own time starts: their compaction after the halves
   for (const int pass : {kSplitCoarseLevels, kSplitLevels}) {
     if (motionless_) break;
     const bool sixteenths = pass == kSplitLevels;
@@ -342,6 +296,7 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
     split_filter(plane, 0, kept_vf, true, scratch.keep.data(), pass, open, halves);
     split_filter(plane, kept_vf, rows, false, scratch.keep.data(), pass, open, halves);
     if (pass == levels) break;  // stage 4 reads these rows in place, and compacts once
+    t_sixteenths = Clock::now();
     plane.compact(scratch.keep.data());  // the rows the next pass reads
     compact(batch, scratch.keep);
     compact(scratch.open, scratch.keep.data());
@@ -349,22 +304,30 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   std::size_t split_kept = 0;
   for (std::size_t i = 0; i < rows; ++i) split_kept += scratch.keep[i];
   c.split_culled += plane_kept - split_kept;
-  if (levels == kSplitLevels) c.sixteenths_tested += rows, c.sixteenths_culled += rows - split_kept;
   const auto t_proximity = Clock::now();
-  c.split_ns += ns_since(t_split);
+  if (levels == kSplitLevels) {
+    c.sixteenths_tested += rows, c.sixteenths_culled += rows - split_kept;
+    c.sixteenths_ns += ns_since(t_sixteenths);
+    c.split_ns += std::uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(t_sixteenths - t_split).count());
+  } else {
+    c.split_ns += ns_since(t_split);
+  }
   // Stage 4 on the rows stage 3 kept, in place (same row numbers): the distance on their open windows, in the
-  // steps where it pays (CullPassRule).
+  // steps the rules choose (rules/stage_rules.hpp).
   if (proximity_stage_) {
     proximity_filter(plane, kept_vf, rows, scratch.open.data(), levels, scratch.keep.data(), scratch.proximity);
     c.proximity_tested += split_kept;
+    c.proximity_ns += ns_since(t_proximity);
   }
-  // Each pair's earliest possible time: the start of its first open window.
+  // Each pair's earliest possible time: the start of its first open window; then the one compaction, which
+  // runs whether stage 4 does or not (stage 3's).
+  const auto t_compact = Clock::now();
   batch.from.resize(rows);
   for (std::size_t i = 0; i < rows; ++i)
     batch.from[i] = scratch.open[i] ? float(std::countr_zero(scratch.open[i])) / float(1 << levels) : 1.0f;
   compact(batch, scratch.keep);
   c.proximity_culled += split_kept - batch.vf.size() - batch.ee.size();
-  c.proximity_ns += ns_since(t_proximity);  // its compaction and `from` too, which run either way
+  c.split_ns += ns_since(t_compact);
 }
 
 void NarrowPhase::test(const FeatureBatch& batch, Contacts& out, NarrowCounters& c) const {

@@ -42,18 +42,8 @@ class OrphanCertificates {
   static constexpr double kMargin = 1e-4;      ///< relative to the largest coordinate plus the thickness: the float
                                                ///< 26-DOPs' own rounding, with room to spare
 
-  // When a step uses them (NarrowPhase): measuring and the motion pass cost a little more than the plain coarse
-  // test, which they save only where the mesh bends little (a twisting rod spends every budget at once). They
-  // are used in the steps 0 and 1 of every kRemeasure (to measure, then to see what they skip), and in the
-  // others while the last step that could skip skipped at least kPays of the set. Counted, as the stage rules.
-  static constexpr std::uint64_t kRemeasure = 16;
-  static constexpr double kPays = 0.5;
-  [[nodiscard]] bool pay(std::uint64_t step) const { return step % kRemeasure < 2 || skipped_share_ >= kPays; }
-  /// A step that used them: how many of `pairs` orphans it skipped (counted only when it could skip: the step
-  /// before used them too).
-  void record(std::uint64_t skipped, std::uint64_t pairs) {
-    if (could_skip_ && pairs > 0) skipped_share_ = double(skipped) / double(pairs);
-  }
+  // Which steps use them is the rules' choice (rules/stage_rules.hpp): they cost a motion pass and the gaps'
+  // measuring, and save only where the mesh bends little (a twisting rod spends every budget at once).
 
   /// Blocks of `orphans` (VF first, then EE) with the vertex ids each reads; every budget starts spent.
   OrphanCertificates(const OrphanSet& orphans, const TriMesh& mesh);
@@ -90,7 +80,6 @@ class OrphanCertificates {
   mutable std::vector<double> budget_;  // see certify()
   double margin_ = 0;
   bool could_skip_ = false;     ///< this step has budgets from the last one (begin_step)
-  double skipped_share_ = 1;   ///< of the set, in the last step that could skip
   Positions last_t0_, last_t1_;         ///< the last step's frames (empty before the first)
   std::vector<std::vector<Box>> runs_;  ///< runs_[j][b]: the δ box of buckets [b, b + 2^j)
 };

@@ -39,7 +39,9 @@ CcdPipeline::CcdPipeline(const TriMesh& mesh, std::vector<Body> bodies, Pipeline
               }),
       traversal_(*strategies_.scheduler, strategies_.threads, MemoryBudget(strategies_.memory_limit_bytes, strategies_.stream_slices)),
       narrow_driver_(narrow_, strategies_.threads),
-      end_box_rule_(strategies_.end_boxes) {
+      stage_rules_(strategies_.narrow.rules, strategies_.end_boxes == EndBoxMode::automatic ? PassChoice::adaptive
+                                             : strategies_.end_boxes == EndBoxMode::on      ? PassChoice::on
+                                                                                             : PassChoice::off) {
   if (const std::uint64_t limit = strategies_.memory_limit_bytes; limit > 0) {
     const std::uint64_t resident = current_rss_bytes(),
                         need = estimate_pipeline_bytes(mesh_, strategies_.k, strategies_.width, orphans().vf.size() + orphans().ee.size(),
@@ -117,8 +119,11 @@ void CcdPipeline::step(const Positions& x_t0, const Positions& x_t1, StepResult&
   clock.parallel("swept_bv", &tm.swept_bv_ms, [&](PhaseTrace& t) {
     swept_.update(x_t0, x_t1, strategies_.tester->thickness(), strategies_.threads, t);
   });
-  ends_in_step_ = end_box_rule_.runs(end_boxes_kept(), std::size_t(mesh_.num_faces()));
-  narrow_.begin_step(x_t0, x_t1, swept_, ends_in_step_);
+  StepPossible possible = narrow_.possible();
+  possible.end_boxes = end_boxes_kept();
+  plan_ = stage_rules_.plan(steps_, possible);
+  ends_in_step_ = plan_.end_boxes;
+  narrow_.begin_step(x_t0, x_t1, swept_, plan_);
 
   // 2. Body hierarchies: refit, restructure, then what hangs on the topology.
   const std::optional<double> end_reach = ends_in_step_ ? std::optional(this->end_reach()) : std::nullopt;
@@ -152,12 +157,14 @@ void CcdPipeline::step(const Positions& x_t0, const Positions& x_t1, StepResult&
   traversal_.test_end_boxes(ends_in_step_);
   traversal_.run(std::size_t(mesh_.num_faces()), narrow_driver_, result);
   refuse_late_step("its candidates");
-  clock.serial("orphan_motion", &tm.orphan_ms, [&] { narrow_.begin_orphans(x_t0, x_t1); });
+  clock.serial("orphan_motion", &tm.orphan_ms, [&] { result.counters.orphan_motion_ns += narrow_.begin_orphans(x_t0, x_t1); });
   narrow_driver_.test_orphans(strategies_.normal_cones ? &face_patch_ : nullptr, result);
   refuse_late_step("its orphan set");
   expected_candidates_ = double(result.counters.candidate_pairs);
-  narrow_.end_step(result.counters);
-  end_box_rule_.record(ends_in_step_, result.counters.candidate_pairs);
+  // What the step cost, for the rules: its narrow phase's thread-ns, and its time but for the build (end boxes
+  // change the refit and the traversal too).
+  const double step_ms = ms_between(t_start, PhaseClock::Clock::now()) - tm.build_ms;
+  stage_rules_.record(steps_++, plan_, result.counters, {StageRules::narrow_ns(result.counters), step_ms * 1e6});
 
   // 5. One order, whatever the schedule.
   clock.parallel("sort_contacts", nullptr, [&](PhaseTrace& t) { narrow_driver_.sort_contacts_into(result.contacts, sort_scratch_, t); });

@@ -15,7 +15,6 @@
 #include "framework/narrow/narrow_phase.hpp"
 #include "framework/pipeline/bodies.hpp"
 #include "framework/pipeline/body_hierarchy.hpp"
-#include "framework/pipeline/end_box_rule.hpp"
 #include "framework/pipeline/memory_budget.hpp"
 #include "framework/pipeline/narrow_driver.hpp"
 #include "framework/pipeline/pipeline_settings.hpp"
@@ -115,8 +114,10 @@ class CcdPipeline {
   NarrowDriver narrow_driver_;
   ContactSortScratch sort_scratch_;  ///< sort_contacts' buffers, kept across steps
   bool built_ = false;
-  EndBoxRule end_box_rule_;    ///< whether a step tests end boxes
-  bool ends_in_step_ = false;  ///< whether this (or the last) step tests them
+  StageRules stage_rules_;     ///< which passes that only save work a step runs (framework/narrow/rules/)
+  StepPlan plan_;              ///< … this (or the last) step's
+  std::uint64_t steps_ = 0;    ///< steps run
+  bool ends_in_step_ = false;  ///< whether this (or the last) step tests end boxes
   double estimated_extent_ = -1;  ///< the scene's extent at the last work estimate (−1: none yet)
   double expected_candidates_ = 0;  ///< for the progress report: the estimate, then the last step's count
   StepWatch watch_;

@@ -67,7 +67,7 @@ TEST_P(RealSteps, FloatFindsExactlyTheTrueContactsInEveryNarrowMode) {
   if (!l) GTEST_SKIP() << GetParam().scene << " not found in ../shared/data/meshes: real-data test skipped";
   std::optional<std::uint64_t> hash;
   for (NarrowOptions o : {NarrowOptions{NarrowMode::batched, RepresentativeRule::fixed},
-                          NarrowOptions{NarrowMode::batched, RepresentativeRule::fixed, OrphanCarry::always},
+                          NarrowOptions{NarrowMode::batched, RepresentativeRule::fixed, {.orphan_carry = PassChoice::on}},
                           NarrowOptions{NarrowMode::batched, RepresentativeRule::first_free},
                           NarrowOptions{NarrowMode::scalar, RepresentativeRule::fixed}}) {
     const StepResult r = run(*l, "float", o);
@@ -75,7 +75,7 @@ TEST_P(RealSteps, FloatFindsExactlyTheTrueContactsInEveryNarrowMode) {
     std::set<EdgeEdgePair> ee;
     split(r, vf, ee);
     const std::string what = std::string(to_string(o.mode)) + "/" + std::string(to_string(o.representative)) +
-                             (o.carry_orphans == OrphanCarry::always ? " carrying the orphans" : "");
+                             (o.rules.orphan_carry == PassChoice::on ? " carrying the orphans" : "");
     EXPECT_EQ(vf, l->truth.vf_true) << what;
     EXPECT_EQ(ee, l->truth.ee_true) << what;
     const std::uint64_t h = contact_set_hash(r.contacts);

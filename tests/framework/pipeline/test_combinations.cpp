@@ -89,6 +89,8 @@ PipelineStrategies strategies(const Combination& c, const std::string& tester) {
   s.builder = builder_registry().make({c.builder, builder_registry().find(c.builder)->defaults()});
   s.scheduler = scheduler_registry().make({c.scheduler, scheduler_registry().find(c.scheduler)->defaults()});
   s.tester = tester_registry().make({tester, tester_registry().find(tester)->defaults()});
+  s.narrow.rules = StageRuleChoices::all(PassChoice::on);  // timed rules may choose differently between runs
+  s.end_boxes = EndBoxMode::on;
   return s;
 }
 

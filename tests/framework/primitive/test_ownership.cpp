@@ -178,7 +178,7 @@ TEST(Representatives, CarriedOrphansAreTestedOnceThroughTheirFirstNonAdjacentFac
   MeshData g = test::grid(8, 8);
   TriMesh mesh(Index(g.positions.size()), g.faces);
   CcdPipeline pipeline(mesh, single_cloth_body(mesh),
-                       default_strategies(18, {NarrowMode::batched, RepresentativeRule::fixed, OrphanCarry::always}));
+                       default_strategies(18, {NarrowMode::batched, RepresentativeRule::fixed, {.orphan_carry = PassChoice::on}}));
   Positions x0, x1;
   const Gathered gathered = gather_one_step(pipeline, g, 23, &x0, &x1);
   const Ownership& own = pipeline.representatives().owners();

@@ -1,0 +1,81 @@
+#include "framework/narrow/rules/stage_rules.hpp"
+
+#include <algorithm>
+
+namespace ccdlab {
+
+bool CullPassRule::runs(std::uint64_t step) const {
+  if (choice_ != PassChoice::adaptive) return choice_ == PassChoice::on;
+  return pays_ || RuleCalendar::at(step, RuleCalendar::passes, periods_);
+}
+
+void CullPassRule::record(double net) {
+  const bool pays = net > 0;
+  periods_ = pays == pays_ ? std::min(2 * periods_, RuleCalendar::kMaxPeriods) : 1;
+  pays_ = pays;
+}
+
+void SwitchRule::record(double cost, double reference) {
+  if (reference < 0) return;
+  if (cost < reference) {
+    chosen_ = !chosen_;
+    periods_ = 1;
+  } else {
+    periods_ = std::min(2 * periods_, RuleCalendar::kMaxPeriods);
+  }
+}
+
+StageRules::StageRules(StageRuleChoices choices, PassChoice end_boxes)
+    : triangles_(choices.triangles, true, RuleCalendar::triangles),
+      carry_(choices.orphan_carry, false, RuleCalendar::carry),
+      certificates_(choices.certificates, true, RuleCalendar::certificates),
+      end_boxes_(end_boxes, false, RuleCalendar::end_boxes),
+      sixteenths_(choices.sixteenths),
+      proximity_(choices.proximity) {}
+
+StepPlan StageRules::plan(std::uint64_t step, const StepPossible& can) const {
+  StepPlan p;
+  p.possible = can;
+  p.triangles = can.triangles && triangles_.runs(step);
+  p.sixteenths = can.culling && sixteenths_.runs(step);
+  p.proximity = p.sixteenths && proximity_.runs(step);  // stage 4 works on the sixteenths' windows
+  p.carry = can.carry && carry_.runs(step);
+  // Certificates skip a block only from the last step's budgets: the step before their measuring slot sets them.
+  const bool readies = can.certificates && !certificates_.chosen() && certificates_.measures(step + 1);
+  p.certificates = can.certificates && !p.carry && (certificates_.runs(step) || readies);
+  p.end_boxes = can.end_boxes && end_boxes_.runs(step);
+  const bool remeasures = p.sixteenths && sixteenths_.remeasures(step) || p.proximity && proximity_.remeasures(step);
+  p.clean = !(can.triangles && triangles_.measures(step)) && !(can.carry && carry_.measures(step)) &&
+            !(can.certificates && !p.carry && certificates_.measures(step)) && !readies &&
+            !(can.end_boxes && end_boxes_.measures(step)) && !remeasures;
+  return p;
+}
+
+double StageRules::narrow_ns(const NarrowCounters& c) {
+  return double(c.triangle_ns + c.gather_ns + c.kdop_ns + c.plane_ns + c.split_ns + c.sixteenths_ns + c.proximity_ns +
+                c.test_ns + c.orphan_motion_ns);
+}
+
+void StageRules::record(std::uint64_t step, const StepPlan& plan, const NarrowCounters& c, const StepCost& cost) {
+  // The culling passes, from their own step: each removed pair would have been tested.
+  if (const std::uint64_t tests = c.vf_tests + c.ee_tests; tests > 0) ns_per_test_ = double(c.test_ns) / double(tests);
+  if (ns_per_test_ >= 0) {
+    double later = 0;
+    if (plan.proximity && c.proximity_tested > 0) {
+      const double net = CullPassRule::net_saving(double(c.proximity_ns), c.proximity_culled, ns_per_test_);
+      proximity_.record(net);
+      later = std::max(0.0, net);
+    }
+    if (plan.sixteenths && c.sixteenths_tested > 0)
+      sixteenths_.record(CullPassRule::net_saving(double(c.sixteenths_ns), c.sixteenths_culled, ns_per_test_) + later);
+  }
+  // The A/B rules, against the last clean step.
+  const StepPossible& can = plan.possible;
+  if (can.triangles && triangles_.measures(step)) triangles_.record(cost.narrow_ns, reference_.narrow_ns);
+  if (can.carry && carry_.measures(step)) carry_.record(cost.narrow_ns, reference_.narrow_ns);
+  if (can.certificates && !plan.carry && certificates_.measures(step)) certificates_.record(cost.narrow_ns, reference_.narrow_ns);
+  if (can.end_boxes && end_boxes_.measures(step)) end_boxes_.record(cost.step_ns, reference_.step_ns);
+  if (plan.clean) reference_ = cost;
+}
+
+}  // namespace ccdlab

@@ -1,0 +1,28 @@
+#pragma once
+// The steps a barrier (IPC-style) solver asks CCD, as benchmark input: the implicit cloth of
+// framework/sim/barrier/barrier_solver.hpp — a sheet folded into layers a little more than a contact distance
+// apart, dropped on a sphere — run for a few frames, keeping each Newton iteration's (x, x + Δx) before its line
+// search. The layers land on one another and most Newton steps carry a layer through its neighbours: the tangled,
+// contact-dense steps of docs/narrow-phase.md ("Steps a barrier solver asks for").
+//   scene: {builtin: barrier_newton, cells: 204, pleats: 4, solver_frames: 8}
+// Recorded once into a folder (PLY frames + meta.json, as simulated scenes are) and reused while the parameters
+// and the solver are the same: frames 2i and 2i + 1 are query i's x and x + Δx.
+#include <string>
+
+#include "framework/scene/mesh_sequence.hpp"
+
+namespace ccdlab {
+
+struct BarrierNewtonParams {
+  int cells = 101;          ///< vertices per side of the sheet (2·(cells − 1)² triangles)
+  int pleats = 4;           ///< layers of the accordion fold
+  int frames = 8;           ///< frames the solver runs (h = 1/60 s)
+  int max_iterations = 8;   ///< Newton iterations per frame at most (each one a recorded query)
+  double drop_speed = 2.0;  ///< the sheet's initial downward speed, m/s
+  std::string dir;          ///< folder of the recording (empty: results/scenes/barrier_newton-HASH)
+};
+
+/// Runs the solver and records its queries into their folder, unless it holds them already; returns the folder.
+std::string record_barrier_newton(const BarrierNewtonParams& params, bool progress = true);
+
+}  // namespace ccdlab

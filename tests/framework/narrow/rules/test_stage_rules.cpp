@@ -1,0 +1,145 @@
+// The adaptive rules and their calendar (framework/narrow/rules/stage_rules.hpp), fed measured costs by hand.
+#include <gtest/gtest.h>
+
+#include "framework/narrow/rules/stage_rules.hpp"
+
+namespace ccdlab {
+namespace {
+
+constexpr std::uint64_t kPeriod = RuleCalendar::kPeriod;
+
+TEST(CullPassRule, RunsWhileWhatItRemovedCostMoreThanItselfAndIsMeasuredAgainWithBackoff) {
+  CullPassRule rule;
+  EXPECT_TRUE(rule.runs(1)) << "nothing measured yet: it runs";
+  // 100 pairs removed at 150 ns a test save 15 µs: a pass of 20 µs does not pay, one of 10 µs does.
+  EXPECT_LT(CullPassRule::net_saving(20000, 100, 150), 0);
+  EXPECT_GT(CullPassRule::net_saving(10000, 100, 150), 0);
+  rule.record(CullPassRule::net_saving(20000, 100, 150));
+  for (std::uint64_t s = 1; s < kPeriod; ++s) EXPECT_FALSE(rule.runs(s)) << s;
+  EXPECT_TRUE(rule.runs(kPeriod)) << "measured again in the next period's slot";
+  EXPECT_TRUE(rule.remeasures(kPeriod));
+  rule.record(-1);  // confirmed: the interval doubles
+  EXPECT_FALSE(rule.runs(3 * kPeriod));
+  EXPECT_TRUE(rule.runs(4 * kPeriod));
+  rule.record(+1);  // it pays now: it runs in every step
+  for (std::uint64_t s = 4 * kPeriod + 1; s < 6 * kPeriod; ++s) EXPECT_TRUE(rule.runs(s)) << s;
+  EXPECT_FALSE(rule.remeasures(4 * kPeriod + 1));
+}
+
+TEST(CullPassRule, ForcedIgnoresWhatItMeasures) {
+  CullPassRule on(PassChoice::on), off(PassChoice::off);
+  on.record(-1e9), off.record(1e9);
+  for (std::uint64_t s = 0; s < 2 * kPeriod; ++s) EXPECT_TRUE(on.runs(s) && !off.runs(s)) << s;
+}
+
+TEST(SwitchRule, RunsItsChoiceAndTheOtherInItsSlotThenSwitchesWhenThatCostLess) {
+  SwitchRule rule(PassChoice::adaptive, true, RuleCalendar::triangles);
+  for (std::uint64_t s = 0; s < kPeriod; ++s) {
+    EXPECT_EQ(rule.measures(s), s == RuleCalendar::triangles) << s;
+    EXPECT_EQ(rule.runs(s), s != RuleCalendar::triangles) << s;
+  }
+  rule.record(120, -1);  // no reference yet: nothing decided
+  EXPECT_TRUE(rule.chosen());
+  rule.record(120, 100);  // the alternative cost more: kept, measured again two periods on
+  EXPECT_TRUE(rule.chosen());
+  EXPECT_FALSE(rule.measures(kPeriod + RuleCalendar::triangles));
+  EXPECT_TRUE(rule.measures(2 * kPeriod + RuleCalendar::triangles));
+  rule.record(80, 100);  // cheaper: switched, every period again
+  EXPECT_FALSE(rule.chosen());
+  EXPECT_FALSE(rule.runs(2 * kPeriod + RuleCalendar::triangles + 1));
+  EXPECT_TRUE(rule.runs(3 * kPeriod + RuleCalendar::triangles));
+  SwitchRule forced(PassChoice::off, true, RuleCalendar::triangles);
+  EXPECT_FALSE(forced.runs(RuleCalendar::triangles) || forced.measures(RuleCalendar::triangles));
+}
+
+TEST(SwitchRule, BackoffStopsAtTheLongestInterval) {
+  SwitchRule rule(PassChoice::adaptive, false, RuleCalendar::carry);
+  for (int i = 0; i < 10; ++i) rule.record(2, 1);
+  const std::uint64_t longest = RuleCalendar::kMaxPeriods * kPeriod;
+  EXPECT_TRUE(rule.measures(longest + RuleCalendar::carry));
+  EXPECT_FALSE(rule.measures(longest / 2 + RuleCalendar::carry));
+}
+
+/// A step's counters with `ns` of narrow work.
+NarrowCounters costing(std::uint64_t ns) {
+  NarrowCounters c;
+  c.test_ns = ns;
+  c.vf_tests = 1;
+  return c;
+}
+
+TEST(StageRules, EachRuleMeasuresInItsOwnSlotAgainstTheLastCleanStep) {
+  StageRules rules({}, PassChoice::adaptive);
+  const StepPossible all{true, true, true, true, true};
+  // The first period: each A/B rule tries its other choice once, in its own slot, every other step clean.
+  std::vector<int> measuring(kPeriod, 0);
+  for (std::uint64_t s = 0; s < kPeriod; ++s) {
+    const StepPlan p = rules.plan(s, all);
+    EXPECT_EQ(p.triangles, s != RuleCalendar::triangles) << s;  // on until measured off
+    EXPECT_EQ(p.end_boxes, s >= RuleCalendar::end_boxes) << s;   // off until measured on, cheaper: kept on
+    EXPECT_EQ(p.carry, s == RuleCalendar::carry) << s;
+    EXPECT_EQ(p.certificates, !p.carry && s != RuleCalendar::certificates) << s;
+    EXPECT_EQ(p.clean, s != RuleCalendar::triangles && s != RuleCalendar::carry && s != RuleCalendar::certificates &&
+                           s != RuleCalendar::end_boxes) << s;
+    measuring[s] = !p.clean;
+    // Every step costs 100 but the end boxes' (50): they switch on, nothing else does.
+    const bool cheap = s == RuleCalendar::end_boxes;
+    rules.record(s, p, costing(100), {100, cheap ? 50.0 : 100.0});
+  }
+  for (std::uint64_t s = kPeriod; s < 2 * kPeriod; ++s) {
+    const StepPlan p = rules.plan(s, all);
+    EXPECT_EQ(p.end_boxes, s % kPeriod != RuleCalendar::end_boxes) << s;  // now on, measured off in their slot
+    EXPECT_TRUE(p.triangles) << s;  // confirmed: measured again only two periods on
+    EXPECT_FALSE(p.carry) << s;
+  }
+  // Impossible passes never run nor measure.
+  const StepPlan none = rules.plan(RuleCalendar::triangles, StepPossible{});
+  EXPECT_FALSE(none.triangles || none.sixteenths || none.proximity || none.carry || none.certificates || none.end_boxes);
+  EXPECT_TRUE(none.clean);
+}
+
+TEST(StageRules, CertificatesMeasuredOnAreReadiedTheStepBefore) {
+  StageRuleChoices c;
+  c.certificates = PassChoice::adaptive;
+  StageRules rules(c, PassChoice::off);
+  const StepPossible can{false, false, false, true, false};
+  // Chosen on: measured off in its slot.
+  for (std::uint64_t s = 0; s < kPeriod; ++s) {
+    const StepPlan p = rules.plan(s, can);
+    EXPECT_EQ(p.certificates, s < RuleCalendar::certificates) << s;  // measured off, cheaper: kept off
+    rules.record(s, p, costing(100), {s == RuleCalendar::certificates ? 50.0 : 100.0, 100});
+  }
+  // Switched off: in a later period the step before the slot readies them, the slot uses them.
+  for (std::uint64_t s = 3 * kPeriod; s < 4 * kPeriod; ++s) {
+    const StepPlan p = rules.plan(s, can);
+    const std::uint64_t k = s % kPeriod;
+    EXPECT_EQ(p.certificates, k == RuleCalendar::certificates_ready || k == RuleCalendar::certificates) << s;
+    EXPECT_EQ(p.clean, !p.certificates) << s;
+  }
+}
+
+TEST(StageRules, StageFourRunsOnlyWithTheSixteenthsAndEarnsForThem) {
+  StageRules rules({}, PassChoice::off);
+  const StepPossible can{false, true, false, false, false};
+  StepPlan p = rules.plan(1, can);
+  ASSERT_TRUE(p.sixteenths && p.proximity);
+  // The sixteenths cost 30 µs and removed 100 pairs (15 µs of tests at 150 ns); stage 4 cost 10 µs and removed
+  // 200 (30 µs): together they pay, so both run on.
+  NarrowCounters c;
+  c.vf_tests = 1000, c.test_ns = 150000;
+  c.sixteenths_tested = 1000, c.sixteenths_culled = 100, c.sixteenths_ns = 30000;
+  c.proximity_tested = 900, c.proximity_culled = 200, c.proximity_ns = 10000;
+  rules.record(1, p, c, {});
+  p = rules.plan(2, can);
+  EXPECT_TRUE(p.sixteenths && p.proximity);
+  // Stage 4 removes nothing any more: both stop (the sixteenths alone do not pay), until slot 0 measures again.
+  c.proximity_culled = 0;
+  rules.record(2, p, c, {});
+  for (std::uint64_t s = 3; s < kPeriod; ++s) EXPECT_FALSE(rules.plan(s, can).sixteenths) << s;
+  p = rules.plan(kPeriod, can);
+  EXPECT_TRUE(p.sixteenths && p.proximity);
+  EXPECT_FALSE(p.clean) << "a step that runs a pass only to measure it is no reference";
+}
+
+}  // namespace
+}  // namespace ccdlab
