@@ -224,7 +224,7 @@ const SceneRegistry& scene_registry() {
             {"pleats", ParamType::integer, (long long)b.pleats, "layers of the sheet's accordion fold", 1, 64},
             {"solver_frames", ParamType::integer, (long long)b.frames, "solver frames (1/60 s each)", 1, 10000},
             {"max_iterations", ParamType::integer, (long long)b.max_iterations, "Newton iterations per frame at most", 1, 1000},
-            {"drop_speed", ParamType::real, b.drop_speed, "the sheet's initial downward speed, m/s", 0, 100},
+            {"drop_speed", ParamType::real, b.drop_speed, "the top layer's initial downward speed, m/s (the lowest at rest)", 0, 100},
             {"first_frame", ParamType::integer, 0LL, "the first recorded frame CCD steps from (query i: frames 2i, 2i+1)", 0, 1000000},
             {"last_frame", ParamType::integer, 0LL, "the last recorded frame CCD steps to (0 = the last)", 0, 1000000},
             {"dir", ParamType::string, std::string(), "folder of the recording (empty = results/scenes/barrier_newton-HASH)", 0, 0}},

@@ -1,16 +1,15 @@
 // A cloth falling onto a sphere resting on a floor, stepped implicitly with a log-barrier contact term (Incremental
-// Potential Contact, Li et al. 2020): the solver of framework/sim/barrier/barrier_solver.hpp (its comment gives the
+// Potential Contact, Li et al. 2020): the solver of <ccdlab/barrier_solver.hpp> (its comment gives the
 // energy, the Hessian and the two questions each Newton iteration asks ccdlab), on ccdlab's public API. Each frame
 // ends with ccdlab's check that no pair is closer than the separation s; a frame that fails it stops the program
 // (exit 1). The `barrier_newton` scene runs the same solver at benchmark size and keeps its CCD queries.
+#include <ccdlab/barrier_solver.hpp>
 #include <ccdlab/ccdlab.hpp>
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
-
-#include "framework/sim/barrier/barrier_solver.hpp"
 
 namespace bc = ccdlab::barrier;
 

@@ -47,7 +47,7 @@ PipelineConfig pipeline_config(const PipelineFlags& o) {
   c.memory_limit_bytes = parse_memory_size(o.memory_limit, "--memory-limit");
   c.candidate_limit = o.candidate_limit;
   c.time_limit = o.time_limit;
-  c.narrow = {kNarrowModes.parse(o.narrow, "--narrow"), kRepresentativeRules.parse(o.representative, "--representative")};
+  c.narrow = {kNarrowModes.parse(o.narrow, "--narrow"), kRepresentativeRules.parse(o.representative, "--representative"), {}};
   c.hierarchy = choose(builder_registry(), "hierarchy", o.hierarchy);
   c.scheduler = choose(scheduler_registry(), "scheduler", o.scheduler);
   c.tester = parse_strategy_spec(o.tester, "--tester ", "tester", tester_registry(), kDefaultTester);

@@ -26,7 +26,7 @@ FacePairs brute_force_candidates(const TriMesh& mesh, const CollisionRules& rule
 Contacts brute_force_contacts(const TriMesh& mesh, const CollisionRules& rules, const Positions& x_t0,
                                           const Positions& x_t1, const PrimitiveTester& tester, bool box_cull) {
   // Every pair, one at a time: the scalar narrow phase on a batch that holds them all.
-  NarrowPhase narrow(mesh, tester, {NarrowMode::scalar, RepresentativeRule::fixed}, [](Index) { return false; });
+  NarrowPhase narrow(mesh, tester, {NarrowMode::scalar, RepresentativeRule::fixed, {}}, [](Index) { return false; });
   PhaseTrace trace;
   FeatureBounds bounds;
   bounds.update(x_t0, x_t1, tester.thickness(), 1, trace);

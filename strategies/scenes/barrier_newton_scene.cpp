@@ -1,15 +1,16 @@
 #include "strategies/scenes/barrier_newton_scene.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 
+#include <ccdlab/barrier_solver.hpp>
 #include <ccdlab/ccdlab.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "ccdlab/build_info.hpp"
 #include "framework/mesh/mesh_io.hpp"
-#include "framework/sim/barrier/barrier_solver.hpp"
 #include "framework/util/error.hpp"
 #include "framework/util/files.hpp"
 #include "framework/util/progress.hpp"
@@ -18,7 +19,7 @@ namespace ccdlab {
 namespace {
 
 /// Bump when the solver or the scene changes what it records: cached recordings of another version are redone.
-constexpr int kRecordingVersion = 1;
+constexpr int kRecordingVersion = 2;
 
 std::string params_key(const BarrierNewtonParams& p) {
   return fmt::format("v{} cells={} pleats={} frames={} iterations={} drop={}", kRecordingVersion, p.cells, p.pleats,
@@ -52,7 +53,7 @@ std::string record_barrier_newton(const BarrierNewtonParams& p, bool progress) {
 
   // The sheet: side 1, layers one cell apart; the barrier acts below 0.8 of that, the separation is a tenth of it.
   const double cell = 1.0 / (p.cells - 1), gap = cell, radius = 0.25;
-  bc::ClothScene scene = bc::make_sheet_over_sphere(p.cells, radius + 2 * gap, radius, 16, 32, p.pleats, gap);
+  bc::ClothScene scene = bc::make_sheet_over_sphere(p.cells, radius + gap, radius, 16, 32, p.pleats, gap);
   const int sphere_vertices = int(scene.x.size()) - scene.cloth_vertices - 4;
   const std::vector<Detector::Body> bodies{{scene.cloth, scene.cloth_vertices, false, true, "cloth"},
                                            {scene.sphere, sphere_vertices, true, false, "sphere"},
@@ -89,7 +90,13 @@ std::string record_barrier_newton(const BarrierNewtonParams& p, bool progress) {
     ++query;
   };
   std::vector<bc::Point> x = scene.x;
-  std::vector<bc::Vec3> v(scene.cloth_vertices, bc::Vec3(0, 0, -p.drop_speed));
+  // The lowest layer starts at rest just above the sphere, each one above it faster (the top one at drop_speed):
+  // the stack closes onto itself, and the Newton steps carry upper layers through the ones below.
+  std::vector<bc::Vec3> v(scene.cloth_vertices, bc::Vec3::Zero());
+  for (int i = 0; i < scene.cloth_vertices; ++i) {
+    const double height = (scene.x[i][2] - scene.x[0][2]) / (gap * std::max(1, p.pleats - 1));
+    v[i] = bc::Vec3(0, 0, -p.drop_speed * std::clamp(height, 0.0, 1.0));
+  }
   Progress bar("ccdlab: recording barrier_newton's queries (once)", p.frames, progress);
   const auto started = std::chrono::steady_clock::now();
   nlohmann::json per_frame = nlohmann::json::array();

@@ -16,9 +16,9 @@ namespace ccdlab {
 struct BarrierNewtonParams {
   int cells = 101;          ///< vertices per side of the sheet (2·(cells − 1)² triangles)
   int pleats = 4;           ///< layers of the accordion fold
-  int frames = 8;           ///< frames the solver runs (h = 1/60 s)
-  int max_iterations = 8;   ///< Newton iterations per frame at most (each one a recorded query)
-  double drop_speed = 2.0;  ///< the sheet's initial downward speed, m/s
+  int frames = 2;           ///< frames the solver runs (h = 1/60 s)
+  int max_iterations = 6;   ///< Newton iterations per frame at most (each one a recorded query)
+  double drop_speed = 0.6;  ///< the top layer's initial downward speed, m/s (the lowest starts at rest)
   std::string dir;          ///< folder of the recording (empty: results/scenes/barrier_newton-HASH)
 };
 

@@ -66,10 +66,10 @@ TEST_P(RealSteps, FloatFindsExactlyTheTrueContactsInEveryNarrowMode) {
   const auto l = load(GetParam());
   if (!l) GTEST_SKIP() << GetParam().scene << " not found in ../shared/data/meshes: real-data test skipped";
   std::optional<std::uint64_t> hash;
-  for (NarrowOptions o : {NarrowOptions{NarrowMode::batched, RepresentativeRule::fixed},
+  for (NarrowOptions o : {NarrowOptions{NarrowMode::batched, RepresentativeRule::fixed, {}},
                           NarrowOptions{NarrowMode::batched, RepresentativeRule::fixed, {.orphan_carry = PassChoice::on}},
-                          NarrowOptions{NarrowMode::batched, RepresentativeRule::first_free},
-                          NarrowOptions{NarrowMode::scalar, RepresentativeRule::fixed}}) {
+                          NarrowOptions{NarrowMode::batched, RepresentativeRule::first_free, {}},
+                          NarrowOptions{NarrowMode::scalar, RepresentativeRule::fixed, {}}}) {
     const StepResult r = run(*l, "float", o);
     std::set<VertexFacePair> vf;
     std::set<EdgeEdgePair> ee;

@@ -43,11 +43,12 @@ StepPlan StageRules::plan(std::uint64_t step, const StepPossible& can) const {
   // Certificates skip a block only from the last step's budgets: the step before their measuring slot sets them.
   const bool readies = can.certificates && !certificates_.chosen() && certificates_.measures(step + 1);
   p.certificates = can.certificates && !p.carry && (certificates_.runs(step) || readies);
-  p.end_boxes = can.end_boxes && end_boxes_.runs(step);
-  const bool remeasures = p.sixteenths && sixteenths_.remeasures(step) || p.proximity && proximity_.remeasures(step);
+  const bool warms = can.end_boxes && end_boxes_.measures(step + 1);  // the step before the measured one
+  p.end_boxes = can.end_boxes && (warms ? !end_boxes_.chosen() : end_boxes_.runs(step));
+  const bool remeasures = (p.sixteenths && sixteenths_.remeasures(step)) || (p.proximity && proximity_.remeasures(step));
   p.clean = !(can.triangles && triangles_.measures(step)) && !(can.carry && carry_.measures(step)) &&
             !(can.certificates && !p.carry && certificates_.measures(step)) && !readies &&
-            !(can.end_boxes && end_boxes_.measures(step)) && !remeasures;
+            !(can.end_boxes && end_boxes_.measures(step)) && !warms && !remeasures;
   return p;
 }
 

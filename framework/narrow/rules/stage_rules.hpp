@@ -59,11 +59,13 @@ struct StageRuleChoices {
 
 /// The one calendar: a period of kPeriod steps, in which each rule has its slot. Slot 0 re-measures the culling
 /// passes that do not run; each A/B rule runs its other choice in its slot, a clean step before it (the
-/// reference). Stage 0 comes first, the end boxes (whose step time includes a cold first refit) last.
+/// reference). Stage 0 comes first, the end boxes last: their first step with (or without) them pays for arrays
+/// touched cold, so the step before their slot runs the alternative too, unmeasured (as the certificates' needs
+/// their budgets).
 struct RuleCalendar {
   static constexpr std::uint64_t kPeriod = 16;
   static constexpr std::uint64_t kMaxPeriods = 8;  ///< longest interval between re-measurements, in periods
-  enum Slot : std::uint64_t { passes = 0, triangles = 2, carry = 4, certificates_ready = 6, certificates = 7, end_boxes = 9 };
+  enum Slot : std::uint64_t { passes = 0, triangles = 2, carry = 4, certificates_ready = 6, certificates = 7, end_boxes_ready = 9, end_boxes = 10 };
   /// Whether `step` is `slot` of a period that a rule re-measuring every `periods` periods measures in.
   [[nodiscard]] static bool at(std::uint64_t step, Slot slot, std::uint64_t periods) {
     return step % kPeriod == slot && (step / kPeriod) % periods == 0;

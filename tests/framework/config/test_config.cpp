@@ -78,7 +78,7 @@ TEST_F(Config, WrongTypesAndValuesAreLocated) {
             "exp.yaml:2: tester.thickness: expected a number in [0, 1e+300], got '-1'");
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\nscheduler: fastest\n"),
             "exp.yaml:2: scheduler: expected one of sequential, phc, front, static, embree, got 'fastest'");
-  EXPECT_EQ(error_of("scene: {builtin: cube}\n"), "exp.yaml:1: scene.builtin: expected one of drape_fold, simulated, got 'cube'");
+  EXPECT_EQ(error_of("scene: {builtin: cube}\n"), "exp.yaml:1: scene.builtin: expected one of drape_fold, simulated, barrier_newton, got 'cube'");
   EXPECT_EQ(error_of("scene: {builtin: drape_fold}\noutput: {csv: maybe}\n"),
             "exp.yaml:2: output.csv: expected true or false, got 'maybe'");
   EXPECT_EQ(error_of("bv: {k: 6}\n"), "exp.yaml: scene: required key missing (e.g. scene: {builtin: drape_fold})");

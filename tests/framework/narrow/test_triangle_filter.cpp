@@ -193,7 +193,7 @@ PipelineStrategies float_strategies(NarrowMode mode) {
   PipelineStrategies s;
   s.k = 18;
   s.threads = 1;
-  s.narrow = {mode, RepresentativeRule::fixed};
+  s.narrow = {mode, RepresentativeRule::fixed, {}};
   s.builder = builder_registry().make({"median", {}});
   s.scheduler = scheduler_registry().make({"sequential", scheduler_registry().find("sequential")->defaults()});
   s.tester = tester_registry().make({"float", tester_registry().find("float")->defaults()});

@@ -142,7 +142,7 @@ TEST(Ownership, FeaturePairsAreTestedExactlyOnceAndNoneIsLost) {
 TEST(Representatives, FirstFreeTestsEveryFeaturePairOnceThroughItsFirstNonAdjacentFacePair) {
   MeshData g = test::grid(8, 8);
   TriMesh mesh(Index(g.positions.size()), g.faces);
-  CcdPipeline pipeline(mesh, single_cloth_body(mesh), default_strategies(18, {NarrowMode::batched, RepresentativeRule::first_free}));
+  CcdPipeline pipeline(mesh, single_cloth_body(mesh), default_strategies(18, {NarrowMode::batched, RepresentativeRule::first_free, {}}));
   const Gathered gathered = gather_one_step(pipeline, g, 17);
   const auto& vf = gathered.vf;
   const auto& ee = gathered.ee;

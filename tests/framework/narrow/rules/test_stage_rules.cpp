@@ -76,11 +76,12 @@ TEST(StageRules, EachRuleMeasuresInItsOwnSlotAgainstTheLastCleanStep) {
   for (std::uint64_t s = 0; s < kPeriod; ++s) {
     const StepPlan p = rules.plan(s, all);
     EXPECT_EQ(p.triangles, s != RuleCalendar::triangles) << s;  // on until measured off
-    EXPECT_EQ(p.end_boxes, s >= RuleCalendar::end_boxes) << s;   // off until measured on, cheaper: kept on
+    EXPECT_EQ(p.end_boxes, s >= RuleCalendar::end_boxes_ready) << s;  // off until tried (a step to warm up, one
+                                                                       // measured), cheaper: kept on
     EXPECT_EQ(p.carry, s == RuleCalendar::carry) << s;
     EXPECT_EQ(p.certificates, !p.carry && s != RuleCalendar::certificates) << s;
     EXPECT_EQ(p.clean, s != RuleCalendar::triangles && s != RuleCalendar::carry && s != RuleCalendar::certificates &&
-                           s != RuleCalendar::end_boxes) << s;
+                           s != RuleCalendar::end_boxes_ready && s != RuleCalendar::end_boxes) << s;
     measuring[s] = !p.clean;
     // Every step costs 100 but the end boxes' (50): they switch on, nothing else does.
     const bool cheap = s == RuleCalendar::end_boxes;
@@ -88,7 +89,8 @@ TEST(StageRules, EachRuleMeasuresInItsOwnSlotAgainstTheLastCleanStep) {
   }
   for (std::uint64_t s = kPeriod; s < 2 * kPeriod; ++s) {
     const StepPlan p = rules.plan(s, all);
-    EXPECT_EQ(p.end_boxes, s % kPeriod != RuleCalendar::end_boxes) << s;  // now on, measured off in their slot
+    const std::uint64_t k = s % kPeriod;
+    EXPECT_EQ(p.end_boxes, k != RuleCalendar::end_boxes_ready && k != RuleCalendar::end_boxes) << s;  // now on, tried off
     EXPECT_TRUE(p.triangles) << s;  // confirmed: measured again only two periods on
     EXPECT_FALSE(p.carry) << s;
   }

@@ -14,9 +14,9 @@
 // points are a vertex and a vertex (or a vertex and an edge) is reported once per face or edge holding them; it
 // counts once (the pairs are merged by the vertices that carry weight on each side, as barrier solvers do).
 //
-// Header-only and written against the public API's shape (a Detector with proximity and active_set_and_step), so
-// that examples/barrier_cloth (a consumer of the installed package) and the `barrier_newton` scene
-// (strategies/scenes/, which records the solver's CCD queries as benchmark steps) run the same code.
+// Header-only, installed with the package, on the public API (Detector's proximity and active_set_and_step), so that
+// examples/barrier_cloth and the `barrier_newton` scene (strategies/scenes/, which records the solver's CCD queries
+// as benchmark steps) run the same code. Needs Eigen (sparse Cholesky).
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
