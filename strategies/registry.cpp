@@ -224,6 +224,8 @@ const SceneRegistry& scene_registry() {
             {"pleats", ParamType::integer, (long long)b.pleats, "layers of the sheet's accordion fold", 1, 64},
             {"solver_frames", ParamType::integer, (long long)b.frames, "solver frames (1/60 s each)", 1, 10000},
             {"max_iterations", ParamType::integer, (long long)b.max_iterations, "Newton iterations per frame at most", 1, 1000},
+            {"slide_speed", ParamType::real, b.slide_speed, "each layer's initial speed along the folds, m/s (alternating)", 0, 100},
+            {"wrinkle", ParamType::real, b.wrinkle, "each layer's waves, in layer gaps (0 = flat)", 0, 10},
             {"drop_speed", ParamType::real, b.drop_speed, "the top layer's initial downward speed, m/s (the lowest at rest)", 0, 100},
             {"first_frame", ParamType::integer, 0LL, "the first recorded frame CCD steps from (query i: frames 2i, 2i+1)", 0, 1000000},
             {"last_frame", ParamType::integer, 0LL, "the last recorded frame CCD steps to (0 = the last)", 0, 1000000},
@@ -235,6 +237,8 @@ const SceneRegistry& scene_registry() {
              b.frames = int(p.integer("solver_frames"));
              b.max_iterations = int(p.integer("max_iterations"));
              b.drop_speed = p.real("drop_speed");
+             b.wrinkle = p.real("wrinkle");
+             b.slide_speed = p.real("slide_speed");
              b.dir = p.string("dir");
              return load_simulated_frames(record_barrier_newton(b), int(p.integer("first_frame")), int(p.integer("last_frame")));
            },

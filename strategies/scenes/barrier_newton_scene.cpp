@@ -22,8 +22,8 @@ namespace {
 constexpr int kRecordingVersion = 2;
 
 std::string params_key(const BarrierNewtonParams& p) {
-  return fmt::format("v{} cells={} pleats={} frames={} iterations={} drop={}", kRecordingVersion, p.cells, p.pleats,
-                     p.frames, p.max_iterations, p.drop_speed);
+  return fmt::format("v{} cells={} pleats={} frames={} iterations={} drop={} slide={} wrinkle={}", kRecordingVersion,
+                     p.cells, p.pleats, p.frames, p.max_iterations, p.drop_speed, p.slide_speed, p.wrinkle);
 }
 
 std::string fnv_hex(const std::string& text) {
@@ -51,9 +51,9 @@ std::string record_barrier_newton(const BarrierNewtonParams& p, bool progress) {
   create_output_dir(out, "scene.dir");
   remove_stale_output(meta_path.string(), "scene.dir");
 
-  // The sheet: side 1, layers one cell apart; the barrier acts below 0.8 of that, the separation is a tenth of it.
+  // The sheet: side 1, layers one cell apart (waving by `wrinkle` of that); the barrier acts below 0.8 of that, the separation is a tenth of it.
   const double cell = 1.0 / (p.cells - 1), gap = cell, radius = 0.25;
-  bc::ClothScene scene = bc::make_sheet_over_sphere(p.cells, radius + gap, radius, 16, 32, p.pleats, gap);
+  bc::ClothScene scene = bc::make_sheet_over_sphere(p.cells, radius + gap, radius, 16, 32, p.pleats, gap, p.wrinkle * gap);
   const int sphere_vertices = int(scene.x.size()) - scene.cloth_vertices - 4;
   const std::vector<Detector::Body> bodies{{scene.cloth, scene.cloth_vertices, false, true, "cloth"},
                                            {scene.sphere, sphere_vertices, true, false, "sphere"},
@@ -91,11 +91,14 @@ std::string record_barrier_newton(const BarrierNewtonParams& p, bool progress) {
   };
   std::vector<bc::Point> x = scene.x;
   // The lowest layer starts at rest just above the sphere, each one above it faster (the top one at drop_speed):
-  // the stack closes onto itself, and the Newton steps carry upper layers through the ones below.
+  // the stack closes onto itself, and the Newton steps carry upper layers through the ones below. The layers also
+  // slide along the folds, each against its neighbours (slide_speed, alternating in sign), as folded cloth does.
   std::vector<bc::Vec3> v(scene.cloth_vertices, bc::Vec3::Zero());
+  const int per_layer = std::max(1, (p.cells + p.pleats - 1) / p.pleats);
   for (int i = 0; i < scene.cloth_vertices; ++i) {
-    const double height = (scene.x[i][2] - scene.x[0][2]) / (gap * std::max(1, p.pleats - 1));
-    v[i] = bc::Vec3(0, 0, -p.drop_speed * std::clamp(height, 0.0, 1.0));
+    const int layer = (i % p.cells) / per_layer;
+    const double height = double(layer) / double(std::max(1, p.pleats - 1));
+    v[i] = bc::Vec3(0, (layer % 2 == 0 ? 1 : -1) * p.slide_speed, -p.drop_speed * height);
   }
   Progress bar("ccdlab: recording barrier_newton's queries (once)", p.frames, progress);
   const auto started = std::chrono::steady_clock::now();

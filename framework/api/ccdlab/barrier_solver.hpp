@@ -45,8 +45,10 @@ struct ClothScene {
 /// An n×n sheet of side 1 above a sphere of radius r at the origin (stacks × slices triangles), on a floor (a square
 /// of side 3 at z = −r). `pleats` = 1: flat at height z0. `pleats` > 1: folded like an accordion across x into that
 /// many layers `gap` apart, the lowest at z0 (the springs keep the flat sheet's rest lengths; a fold is one row of
-/// cells standing upright).
-inline ClothScene make_sheet_over_sphere(int n, double z0, double r, int stacks, int slices, int pleats = 1, double gap = 0) {
+/// cells standing upright). `wrinkle` > 0: each layer waves by up to that height (wavelength 8 cells, its phase
+/// turning from layer to layer), so that neighbouring layers come close in some places and not in others.
+inline ClothScene make_sheet_over_sphere(int n, double z0, double r, int stacks, int slices, int pleats = 1, double gap = 0,
+                                         double wrinkle = 0) {
   ClothScene s;
   const double h = 1.0 / (n - 1);
   const int per_layer = std::max(1, (n + pleats - 1) / pleats);  // columns per layer
@@ -57,7 +59,8 @@ inline ClothScene make_sheet_over_sphere(int n, double z0, double r, int stacks,
         const int layer = i / per_layer, in = i % per_layer;
         const double width = (per_layer - 1) * h;
         flat[0] = (layer % 2 == 0 ? in * h : width - in * h) - width / 2;
-        flat[2] = z0 + layer * gap;
+        const double pi = std::acos(-1.0), w = 2 * pi / (8 * h);
+        flat[2] = z0 + layer * gap + wrinkle * std::sin(w * flat[0] + 1.3 * layer) * std::sin(w * flat[1] + 0.7 * layer);
       }
       s.x.push_back(flat);
       const int v = j * n + i;
