@@ -71,7 +71,7 @@ void ProximityItemsT(const double* const* col, const double* reach, const std::i
   const hn::RebindToSigned<decltype(d)> di;
   using V = hn::Vec<decltype(d)>;
   const std::size_t N = hn::Lanes(d);
-  const V zero = hn::Zero(d), one = hn::Set(d, 1.0), no_bound = hn::Set(d, -HUGE_VAL);
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
   const V factor = hn::Set(d, kFactor), slack = hn::Set(d, kSlack), hw = hn::Set(d, half_width);
   for (std::size_t i = 0; i < n; i += N) {
     const auto idx = hn::LoadU(di, rows + i);
@@ -97,13 +97,14 @@ void ProximityItemsT(const double* const* col, const double* reach, const std::i
     const V t = hn::LoadU(d, times + i);
     const P3<V> a = Along(a0, t, ma), b = Along(b0, t, mb), c = Along(c0, t, mc);
     const P3<V> origin{zero, zero, zero};
-    V best = no_bound;
-    auto offer = [&](V numerator, V length) {  // a gap numerator / length, with length the direction's norm
-      const V gap = hn::Div(numerator, length);
-      best = hn::IfThenElse(hn::And(hn::Gt(length, zero), hn::Gt(gap, best)), gap, best);
+    const V need2 = hn::Mul(need, need);
+    auto proven_by = hn::Lt(one, zero);  // no lane yet
+    auto offer = [&](V numerator, V length2) {  // the gap numerator / |v| exceeds need, |v|² = length2 > 0
+      const auto beyond = hn::And(hn::Gt(numerator, zero), hn::Gt(hn::Mul(numerator, numerator), hn::Mul(need2, length2)));
+      proven_by = hn::Or(proven_by, hn::And(hn::Gt(length2, zero), beyond));
     };
     const P3<V> normal = Cross3(b, c);
-    const V n_len = norm(normal);
+    const V n_len = Dot3(normal, normal);
     if constexpr (kVf) {  // vertex a, face {0, b, c}; a direction points from the face to the vertex
       auto face_gap = [&](const P3<V>& v, V len) {
         offer(hn::Sub(Dot3(v, a), Larger(Larger(zero, Dot3(v, b)), Dot3(v, c))), len);
@@ -114,7 +115,7 @@ void ProximityItemsT(const double* const* col, const double* reach, const std::i
       for (const P3<V> v : {Sub3(a, ClosestOnSegment(a, origin, b, zero, one)),
                             Sub3(a, ClosestOnSegment(a, b, Sub3(c, b), zero, one)),
                             Sub3(a, ClosestOnSegment(a, origin, c, zero, one))})
-        face_gap(v, norm(v));
+        face_gap(v, Dot3(v, v));
     } else {  // edge {0, b}, edge {a, e = a + c}; a direction points from the first edge to the second
       const P3<V> e = Add3(a, c);
       auto edge_gap = [&](const P3<V>& v, V len) {
@@ -126,10 +127,10 @@ void ProximityItemsT(const double* const* col, const double* reach, const std::i
       for (const P3<V> v : {ClosestOnSegment(origin, a, c, zero, one), Sub3(ClosestOnSegment(b, a, c, zero, one), b),
                             Sub3(a, ClosestOnSegment(a, origin, b, zero, one)),
                             Sub3(e, ClosestOnSegment(e, origin, b, zero, one))})
-        edge_gap(v, norm(v));
+        edge_gap(v, Dot3(v, v));
     }
     std::uint8_t bits[8] = {};
-    hn::StoreMaskBits(d, hn::Gt(best, need), bits);
+    hn::StoreMaskBits(d, proven_by, bits);
     for (std::size_t j = 0; j < N; ++j) proven[i + j] = (bits[j / 8] >> (j % 8)) & 1;
   }
 }
@@ -157,33 +158,45 @@ constexpr std::size_t kMaxLanes = 16;
 
 void proximity_filter(const PlaneBatch& plane, std::size_t vf_rows, std::size_t rows, const std::uint16_t* open,
                       int levels, std::uint8_t* keep, ProximityItems& items) {
+  // In rounds: each undecided row offers its earliest untested open window. A row is kept at its first window
+  // that is not proven (most rows that reach stage 4 are contacts: they stop after a window or two), dropped once
+  // every window is proven.
   const int windows = 1 << levels;
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < rows; ++i) count += keep[i] ? std::size_t(std::popcount(open[i])) : 0;
-  const std::size_t capacity = count + 2 * kMaxLanes;  // each kind padded to a whole vector
-  items.row.resize(capacity);
-  items.time.resize(capacity);
-  items.proven.resize(capacity);
   const double* cols[PlaneBatch::kColumns];
   for (int c = 0; c < PlaneBatch::kColumns; ++c) cols[c] = plane.column(c);
-  std::size_t at = 0;
   for (const bool vf : {true, false}) {
-    const std::size_t first = at, begin = vf ? 0 : vf_rows, end = vf ? vf_rows : rows;
-    for (std::size_t i = begin; i < end; ++i) {
-      if (!keep[i]) continue;
-      keep[i] = 0;  // until an item of it is not proven
-      for (unsigned bits = open[i]; bits != 0; bits &= bits - 1, ++at) {
-        items.row[at] = std::int64_t(i);
-        items.time[at] = (std::countr_zero(bits) + 0.5) / windows;
+    const std::size_t begin = vf ? 0 : vf_rows, end = vf ? vf_rows : rows;
+    std::size_t pending = 0;
+    items.row.resize(end - begin + 2 * kMaxLanes);
+    items.left.resize(end - begin + 2 * kMaxLanes);
+    for (std::size_t i = begin; i < end; ++i)
+      if (keep[i] && open[i] != 0) items.row[pending] = std::int64_t(i), items.left[pending++] = open[i];
+      else keep[i] = 0;
+    items.time.resize(pending + 2 * kMaxLanes);
+    items.proven.resize(pending + 2 * kMaxLanes);
+    while (pending > 0) {
+      for (std::size_t j = 0; j < pending; ++j) {
+        const unsigned bits = items.left[j];
+        items.time[j] = (std::countr_zero(bits) + 0.5) / windows;
+        items.left[j] = std::uint16_t(bits & (bits - 1));
       }
+      for (std::size_t j = pending; j < (pending + kMaxLanes - 1) / kMaxLanes * kMaxLanes; ++j)  // padding: a real item
+        items.row[j] = items.row[0], items.time[j] = items.time[0];
+      HWY_DYNAMIC_DISPATCH(ProximityItems)(cols, plane.result_column(PlaneBatch::Reach), items.row.data(),
+                                           items.time.data(), pending, 0.5 / windows, vf, items.proven.data());
+      std::size_t still = 0;
+      for (std::size_t j = 0; j < pending; ++j) {
+        const std::int64_t i = items.row[j];
+        if (!items.proven[j]) {
+          keep[i] = 1;
+        } else if (items.left[j] == 0) {
+          keep[i] = 0;
+        } else {
+          items.row[still] = i, items.left[still++] = items.left[j];
+        }
+      }
+      pending = still;
     }
-    const std::size_t n = at - first;
-    if (n == 0) continue;
-    for (std::size_t j = at; j < first + (n + kMaxLanes - 1) / kMaxLanes * kMaxLanes; ++j)  // padding: a real item
-      items.row[j] = items.row[first], items.time[j] = items.time[first];
-    HWY_DYNAMIC_DISPATCH(ProximityItems)(cols, plane.result_column(PlaneBatch::Reach), items.row.data() + first,
-                                         items.time.data() + first, n, 0.5 / windows, vf, items.proven.data() + first);
-    for (std::size_t j = first; j < at; ++j) keep[items.row[j]] |= std::uint8_t(items.proven[j] ^ 1);
   }
 }
 
@@ -226,20 +239,20 @@ bool proximity_filter_keeps(const PlaneBatch& plane, std::size_t i, bool vf, std
   for (unsigned bits = open; bits != 0; bits &= bits - 1) {
     const double t = (std::countr_zero(bits) + 0.5) / windows;
     const P3 a = along(a0, t, ma), b = along(b0, t, mb), c = along(c0, t, mc);
-    double best = -HUGE_VAL;
-    auto offer = [&](double numerator, double length) {
-      const double gap = numerator / length;
-      best = length > 0 && gap > best ? gap : best;
+    const double need2 = need * need;
+    bool proven = false;
+    auto offer = [&](double numerator, double length2) {
+      proven |= length2 > 0 && numerator > 0 && numerator * numerator > need2 * length2;
     };
     const P3 normal = cross(b, c);
-    const double n_len = norm(normal);
+    const double n_len = dot(normal, normal);
     if (vf) {
       const double na = dot(normal, a), nb = dot(normal, b), nc = dot(normal, c);
       offer(na - larger(larger(0.0, nb), nc), n_len);
       offer(smaller(smaller(0.0, nb), nc) - na, n_len);
       for (const P3& v : {a - closest_on_segment(a, origin, b), a - closest_on_segment(a, b, c - b),
                           a - closest_on_segment(a, origin, c)})
-        offer(dot(v, a) - larger(larger(0.0, dot(v, b)), dot(v, c)), norm(v));
+        offer(dot(v, a) - larger(larger(0.0, dot(v, b)), dot(v, c)), dot(v, v));
     } else {
       const P3 e = a + c;
       const double na = dot(normal, a), ne = dot(normal, e), nb = dot(normal, b);
@@ -247,9 +260,9 @@ bool proximity_filter_keeps(const PlaneBatch& plane, std::size_t i, bool vf, std
       offer(smaller(0.0, nb) - larger(na, ne), n_len);
       for (const P3& v : {closest_on_segment(origin, a, c), closest_on_segment(b, a, c) - b,
                           a - closest_on_segment(a, origin, b), e - closest_on_segment(e, origin, b)})
-        offer(smaller(dot(v, a), dot(v, e)) - larger(0.0, dot(v, b)), norm(v));
+        offer(smaller(dot(v, a), dot(v, e)) - larger(0.0, dot(v, b)), dot(v, v));
     }
-    if (!(best > need)) return true;
+    if (!proven) return true;
   }
   return false;
 }

@@ -20,8 +20,11 @@
 // operations, where a plain closest-point query per window branches on which feature is closest.
 // A zero direction (parallel edges, a degenerate face) just offers no bound. When gap − S·h exceeds the
 // reach, no contact is possible in the window; when every open window is proven, the pair is dropped.
+// The gap n/|v| > need is decided as n > 0 and n² > need²·|v|², without a square root or a division per
+// direction (they cost more than the rest of the test).
 // Rounding: positions at m, the projections and the columns' own rounding are covered by 128u·M (M = the
-// largest coordinate, as in stage 3), the speed and the reach by a factor 1 + 10⁻¹².
+// largest coordinate, as in stage 3), the speed and the reach by a factor 1 + 10⁻¹²; the squared comparison's own
+// few ulps, relative, by both margins.
 #include <cstdint>
 
 #include "framework/narrow/plane_filter.hpp"
@@ -29,11 +32,13 @@
 
 namespace ccdlab {
 
-/// Stage 4's working memory: one item per (row, open window), VF rows' first; reused from batch to batch.
+/// Stage 4's working memory: one item per undecided row and round (its window's middle, whether it was proven,
+/// its open windows not yet tested); reused from batch to batch.
 struct ProximityItems {
   UninitializedVector<std::int64_t> row;
   UninitializedVector<double> time;  ///< the window's middle
   UninitializedVector<std::uint8_t> proven;
+  UninitializedVector<std::uint16_t> left;
 };
 
 /// Rows [0, rows) of `plane` (filled by plane_filter; rows below `vf_rows` are VF, the others EE), each with
