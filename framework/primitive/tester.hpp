@@ -38,9 +38,6 @@ class PrimitiveTester {
   /// promise that lets the batched narrow phase drop pairs proven farther (plane_filter.hpp). None (the
   /// default) when the tester cannot bound it; the plane stage is then skipped for it.
   [[nodiscard]] virtual std::optional<CullReach> cull_reach() const { return std::nullopt; }
-  /// What one elementary test of a near pair costs, relative to `float`'s batched kernel: a rough figure with
-  /// which the narrow phase weighs a culling stage against the tests it saves (narrow_phase.cpp, StageNs).
-  [[nodiscard]] virtual double relative_test_cost() const { return 1; }
 };
 
 }  // namespace ccdlab

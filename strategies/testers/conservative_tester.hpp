@@ -45,8 +45,6 @@ class ConservativeTester final : public PrimitiveTester {
   /// distance — the batched narrow phase may then have dropped, as farther than the reach, a pair the scalar
   /// mode reports; never one that comes within η.
   [[nodiscard]] std::optional<CullReach> cull_reach() const override { return CullReach{params_.thickness, 4 * params_.delta + kReachFloor}; }
-  /// Near pairs (BM_TesterHardCases): certified windows, the separation search where they stay open.
-  [[nodiscard]] double relative_test_cost() const override { return 10; }
 
   static Fallback parse_fallback(const std::string& name);
 

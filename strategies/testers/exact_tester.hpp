@@ -61,8 +61,6 @@ class ExactTester final : public PrimitiveTester {
   [[nodiscard]] CcdHit edge_edge(const EdgeEdgeQuery& q) const override;
   /// Exact contact at zero distance: nothing farther than 0 is ever reported.
   [[nodiscard]] std::optional<CullReach> cull_reach() const override { return CullReach{0, 0}; }
-  /// Near pairs (BM_TesterHardCases): rational arithmetic on the windows that intervals leave open.
-  [[nodiscard]] double relative_test_cost() const override { return 100; }
 
   [[nodiscard]] Decision decide(const VertexFaceQuery& q) const;
   [[nodiscard]] Decision decide(const EdgeEdgeQuery& q) const;

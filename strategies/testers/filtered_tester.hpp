@@ -19,8 +19,6 @@ class FilteredTester final : public PrimitiveTester {
   void vertex_faces(std::span<const VertexFaceQuery> q, CcdHit* out) const override;
   void edge_edges(std::span<const EdgeEdgeQuery> q, CcdHit* out) const override;
   [[nodiscard]] std::optional<CullReach> cull_reach() const override { return CullReach{0, 2 * FloatTester::rel_tolerance}; }
-  /// Near pairs (BM_TesterHardCases): the float kernel, and the exact test where its filter cannot decide.
-  [[nodiscard]] double relative_test_cost() const override { return 1.5; }
 
  private:
   FloatTester float_{};

@@ -15,14 +15,21 @@ void CullPassRule::record(double net) {
   pays_ = pays;
 }
 
-void SwitchRule::record(double cost, double reference) {
-  if (reference < 0) return;
-  if (cost < reference) {
+void SwitchRule::measured(double cost, unsigned reference_signature, unsigned mask) {
+  pending_cost_ = cost;
+  pending_signature_ = reference_signature & mask;
+  pending_mask_ = mask;
+}
+
+void SwitchRule::reference(double cost, unsigned signature) {
+  if (pending_cost_ < 0 || (signature & pending_mask_) != pending_signature_) return;
+  if (pending_cost_ < cost) {
     chosen_ = !chosen_;
     periods_ = 1;
   } else {
     periods_ = std::min(2 * periods_, RuleCalendar::kMaxPeriods);
   }
+  pending_cost_ = -1;
 }
 
 StageRules::StageRules(StageRuleChoices choices, PassChoice end_boxes)
@@ -70,13 +77,25 @@ void StageRules::record(std::uint64_t step, const StepPlan& plan, const NarrowCo
     if (plan.sixteenths && c.sixteenths_tested > 0)
       sixteenths_.record(CullPassRule::net_saving(double(c.sixteenths_ns), c.sixteenths_culled, ns_per_test_) + later);
   }
-  // The A/B rules, against the last clean step.
+  // The A/B rules, against the last clean step before, or the first after, that ran the same passes but theirs.
   const StepPossible& can = plan.possible;
-  if (can.triangles && triangles_.measures(step)) triangles_.record(cost.narrow_ns, reference_.narrow_ns);
-  if (can.carry && carry_.measures(step)) carry_.record(cost.narrow_ns, reference_.narrow_ns);
-  if (can.certificates && !plan.carry && certificates_.measures(step)) certificates_.record(cost.narrow_ns, reference_.narrow_ns);
-  if (can.end_boxes && end_boxes_.measures(step)) end_boxes_.record(cost.step_ns, reference_.step_ns);
-  if (plan.clean) reference_ = cost;
+  const unsigned signature = plan.signature();
+  const auto alternative = [&](SwitchRule& rule, unsigned bit, double measured, double reference, unsigned mask = ~0u) {
+    rule.measured(measured, signature ^ bit, mask);
+    if (reference >= 0) rule.reference(reference, reference_signature_);
+  };
+  if (can.triangles && triangles_.measures(step)) alternative(triangles_, 1u, cost.narrow_ns, reference_.narrow_ns);
+  if (can.carry && carry_.measures(step))  // carrying, the orphan loop uses no certificates: their bit goes with it
+    alternative(carry_, 1u << 3, cost.narrow_ns, reference_.narrow_ns, ~(1u << 4));
+  if (can.certificates && !plan.carry && certificates_.measures(step))
+    alternative(certificates_, 1u << 4, cost.narrow_ns, reference_.narrow_ns);
+  if (can.end_boxes && end_boxes_.measures(step)) alternative(end_boxes_, 1u << 5, cost.step_ns, reference_.step_ns);
+  if (plan.clean) {
+    for (SwitchRule* rule : {&triangles_, &carry_, &certificates_}) rule->reference(cost.narrow_ns, signature);
+    end_boxes_.reference(cost.step_ns, signature);
+    reference_ = cost;
+    reference_signature_ = signature;
+  }
 }
 
 }  // namespace ccdlab

@@ -58,14 +58,14 @@ struct StageRuleChoices {
 }
 
 /// The one calendar: a period of kPeriod steps, in which each rule has its slot. Slot 0 re-measures the culling
-/// passes that do not run; each A/B rule runs its other choice in its slot, a clean step before it (the
-/// reference). Stage 0 comes first, the end boxes last: their first step with (or without) them pays for arrays
+/// passes that do not run (they decide again in steps 0 and 1); each A/B rule runs its other choice in its slot,
+/// between clean steps (its reference). Stage 0 comes first, the end boxes last: their first step with (or without) them pays for arrays
 /// touched cold, so the step before their slot runs the alternative too, unmeasured (as the certificates' needs
 /// their budgets).
 struct RuleCalendar {
   static constexpr std::uint64_t kPeriod = 16;
   static constexpr std::uint64_t kMaxPeriods = 8;  ///< longest interval between re-measurements, in periods
-  enum Slot : std::uint64_t { passes = 0, triangles = 2, carry = 4, certificates_ready = 6, certificates = 7, end_boxes_ready = 9, end_boxes = 10 };
+  enum Slot : std::uint64_t { passes = 0, triangles = 3, carry = 5, certificates_ready = 7, certificates = 8, end_boxes_ready = 10, end_boxes = 11 };
   /// Whether `step` is `slot` of a period that a rule re-measuring every `periods` periods measures in.
   [[nodiscard]] static bool at(std::uint64_t step, Slot slot, std::uint64_t periods) {
     return step % kPeriod == slot && (step / kPeriod) % periods == 0;
@@ -107,14 +107,20 @@ class SwitchRule {
     return chosen_ != measures(step);
   }
   [[nodiscard]] bool chosen() const { return chosen_; }
-  /// The cost of a step that measured the alternative, and that of the last clean step (< 0: none yet).
-  void record(double cost, double reference);
+  /// A step that ran the alternative cost `cost`; it is judged against a clean step whose passes were those of
+  /// this one but for this rule's (`reference_signature`, StepPlan::signature, on the bits of `mask`): the last
+  /// one before, or the first one after (another rule's choice may have changed in between).
+  void measured(double cost, unsigned reference_signature, unsigned mask = ~0u);
+  /// A clean step: if a measurement waits for a reference of this signature, the rule decides.
+  void reference(double cost, unsigned signature);
 
  private:
   PassChoice choice_;
   bool chosen_;
   RuleCalendar::Slot slot_;
   std::uint64_t periods_ = 1;
+  double pending_cost_ = -1;  ///< the measured alternative waiting for its reference (< 0: none)
+  unsigned pending_signature_ = 0, pending_mask_ = ~0u;
 };
 
 /// Whether each pass can run at all in a step (a tester's reach, batched mode, orphans to carry …).
@@ -127,6 +133,11 @@ struct StepPlan {
   StepPossible possible;
   bool triangles = false, sixteenths = true, proximity = true, carry = false, certificates = false, end_boxes = false;
   bool clean = true;  ///< every rule runs its choice: the step is the next ones' reference
+  /// Which passes run, a bit each: steps are compared only when they differ in the measured rule's bit alone.
+  [[nodiscard]] unsigned signature() const {
+    return unsigned(triangles) | unsigned(sixteenths) << 1 | unsigned(proximity) << 2 | unsigned(carry) << 3 |
+           unsigned(certificates) << 4 | unsigned(end_boxes) << 5;
+  }
 };
 
 /// The measured costs of a step (StageRules::record): the narrow phase's thread-ns (its stages, the tests, the
@@ -153,6 +164,7 @@ class StageRules {
   SwitchRule triangles_, carry_, certificates_, end_boxes_;
   CullPassRule sixteenths_, proximity_;
   StepCost reference_{-1, -1};  ///< the last clean step's costs
+  unsigned reference_signature_ = ~0u;  ///< … and the passes it ran
   double ns_per_test_ = -1;     ///< the last measured thread-ns per elementary test
 };
 

@@ -38,13 +38,17 @@ TEST(SwitchRule, RunsItsChoiceAndTheOtherInItsSlotThenSwitchesWhenThatCostLess) 
     EXPECT_EQ(rule.measures(s), s == RuleCalendar::triangles) << s;
     EXPECT_EQ(rule.runs(s), s != RuleCalendar::triangles) << s;
   }
-  rule.record(120, -1);  // no reference yet: nothing decided
+  rule.measured(120, 0b01);
+  rule.reference(100, 0b11);  // a reference that ran other passes: nothing decided
   EXPECT_TRUE(rule.chosen());
-  rule.record(120, 100);  // the alternative cost more: kept, measured again two periods on
+  rule.reference(100, 0b01);  // the alternative cost more: kept, measured again two periods on
   EXPECT_TRUE(rule.chosen());
   EXPECT_FALSE(rule.measures(kPeriod + RuleCalendar::triangles));
   EXPECT_TRUE(rule.measures(2 * kPeriod + RuleCalendar::triangles));
-  rule.record(80, 100);  // cheaper: switched, every period again
+  rule.reference(50, 0b01);  // decided already: a later clean step changes nothing
+  EXPECT_TRUE(rule.chosen());
+  rule.measured(80, 0b01);
+  rule.reference(100, 0b01);  // cheaper: switched, every period again
   EXPECT_FALSE(rule.chosen());
   EXPECT_FALSE(rule.runs(2 * kPeriod + RuleCalendar::triangles + 1));
   EXPECT_TRUE(rule.runs(3 * kPeriod + RuleCalendar::triangles));
@@ -54,7 +58,7 @@ TEST(SwitchRule, RunsItsChoiceAndTheOtherInItsSlotThenSwitchesWhenThatCostLess) 
 
 TEST(SwitchRule, BackoffStopsAtTheLongestInterval) {
   SwitchRule rule(PassChoice::adaptive, false, RuleCalendar::carry);
-  for (int i = 0; i < 10; ++i) rule.record(2, 1);
+  for (int i = 0; i < 10; ++i) rule.measured(2, 0), rule.reference(1, 0);
   const std::uint64_t longest = RuleCalendar::kMaxPeriods * kPeriod;
   EXPECT_TRUE(rule.measures(longest + RuleCalendar::carry));
   EXPECT_FALSE(rule.measures(longest / 2 + RuleCalendar::carry));
@@ -83,7 +87,8 @@ TEST(StageRules, EachRuleMeasuresInItsOwnSlotAgainstTheLastCleanStep) {
     EXPECT_EQ(p.clean, s != RuleCalendar::triangles && s != RuleCalendar::carry && s != RuleCalendar::certificates &&
                            s != RuleCalendar::end_boxes_ready && s != RuleCalendar::end_boxes) << s;
     measuring[s] = !p.clean;
-    // Every step costs 100 but the end boxes' (50): they switch on, nothing else does.
+    // Every step costs 100 but the end boxes' (50): they switch on, nothing else does (each alternative is judged
+    // against the last clean step, which ran the same passes but its own).
     const bool cheap = s == RuleCalendar::end_boxes;
     rules.record(s, p, costing(100), {100, cheap ? 50.0 : 100.0});
   }
