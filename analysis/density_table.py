@@ -55,7 +55,7 @@ def main():
         name = os.path.splitext(os.path.basename(path))[0]
         per = (lambda x: f"{x / triangles:.2f}") if triangles else (lambda x: "?")
         print(f"| `steady/{name}` | {triangles:,} | {per(contacts)} | {per(c['candidate_pairs'])} | "
-              f"{100 * contacts / tests:.0f}% of {tests:,} | {share(n['triangle_culled'], n['triangle_tested'])} | "
+              f"{share(contacts, tests)} | {share(n['triangle_culled'], n['triangle_tested'])} | "
               f"{share(n['split_culled'], split_in)} | {share(n['sixteenths_culled'], n['sixteenths_tested'])} | "
               f"{share(n['proximity_culled'], n['proximity_tested'])} |")
 

@@ -101,8 +101,8 @@ def main():
             for rule, t in result.items():
                 best = min(t["on"], t["off"])
                 rows.append({"config": os.path.splitext(os.path.basename(config))[0], "threads": threads,
-                             "scheduler": scheduler, "rule": rule, "auto_ms": round(t["auto"], 3),
-                             "on_ms": round(t["on"], 3), "off_ms": round(t["off"], 3),
+                             "scheduler": scheduler, "rule": rule, "auto_ms": round(t["auto"], 5),
+                             "on_ms": round(t["on"], 5), "off_ms": round(t["off"], 5),
                              "regret_pct": round(100 * (t["auto"] / best - 1), 1), "revision": revision})
     with open(os.path.join(a.out, "regret.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))

@@ -48,12 +48,12 @@ def test_unknown_rule_is_refused(tmp_path):
 
 @pytest.mark.skipif(not CLI.exists(), reason="build/bin/ccdlab not built")
 def test_density_row_counts_the_first_step(tmp_path):
-    config = replay_config(tmp_path, thickness=0.01)
+    config = replay_config(tmp_path, thickness=0.05)
     done = subprocess.run([sys.executable, str(ROOT / "analysis" / "density_table.py"), "--cli", str(CLI), str(config)],
                           capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     row = [c.strip() for c in done.stdout.splitlines()[2].split("|")[1:-1]]
     assert row[0] == "`steady/crumpled`"
     assert row[1] == "512"  # 2·16² triangles
-    assert float(row[2]) > 0  # contacts per triangle: the sheet folds over itself
-    assert row[4].endswith("%") or "% of" in row[4]
+    assert float(row[2]) > 0  # contacts per triangle: the sheet folds over itself, within the thickness
+    assert "% of" in row[4]  # the share of tests that hit

@@ -59,13 +59,14 @@ struct StageRuleChoices {
 
 /// The one calendar: a period of kPeriod steps, in which each rule has its slot. Slot 0 re-measures the culling
 /// passes that do not run (they decide again in steps 0 and 1); each A/B rule runs its other choice in its slot,
-/// between clean steps (its reference). Stage 0 comes first, the end boxes last: their first step with (or without) them pays for arrays
-/// touched cold, so the step before their slot runs the alternative too, unmeasured (as the certificates' needs
-/// their budgets).
+/// between clean steps (its reference), the rules that can move a step most first: the end boxes (the
+/// traversal and every candidate), the orphan carry (the whole orphan loop), stage 0, the certificates. A first
+/// step with end boxes pays for arrays touched cold, so the step before their slot runs them too, unmeasured (as
+/// the certificates' needs the budgets to skip by).
 struct RuleCalendar {
   static constexpr std::uint64_t kPeriod = 16;
   static constexpr std::uint64_t kMaxPeriods = 8;  ///< longest interval between re-measurements, in periods
-  enum Slot : std::uint64_t { passes = 0, triangles = 3, carry = 5, certificates_ready = 7, certificates = 8, end_boxes_ready = 10, end_boxes = 11 };
+  enum Slot : std::uint64_t { passes = 0, end_boxes_ready = 2, end_boxes = 3, carry = 5, triangles = 7, certificates_ready = 9, certificates = 10 };
   /// Whether `step` is `slot` of a period that a rule re-measuring every `periods` periods measures in.
   [[nodiscard]] static bool at(std::uint64_t step, Slot slot, std::uint64_t periods) {
     return step % kPeriod == slot && (step / kPeriod) % periods == 0;
