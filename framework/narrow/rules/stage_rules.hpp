@@ -13,9 +13,10 @@
 //   priced at this step's measured thread-ns per elementary test, cost more; the sixteenths also earn what stage 4,
 //   which works on their windows, saved. A pass that did not pay is measured again in the calendar's `passes` slot.
 // - an A/B rule runs its current choice in every step and, in its own slot of the calendar, the other one; it
-//   switches when that step cost less than the last step in which every rule ran its choice (a clean step, the
-//   reference). Steps alike in kind are compared: a replay's steps, or a solver's successive calls.
-// Each passes are exact culling: the contacts are the same whatever a rule decides, only the time moves. Timed
+//   switches when that step cost less than a clean step (every rule on its choice) that ran the same passes but
+//   its own: the last one before, or the first one after. It assumes neighbouring steps alike in kind (a replay's
+//   steps, a solver's successive calls); where they are not, it can choose wrong (docs/narrow-phase.md).
+// The passes are exact culling: the contacts are the same whatever a rule decides, only the time moves. Timed
 // decisions may differ between runs and schedules; what a step *counts* (tests, pairs) then differs with them,
 // so the tests that compare work across schedules force every rule (PassChoice::on / off, StageRuleChoices).
 // Each re-measurement that confirms a choice doubles the rule's interval, up to kMaxPeriods periods; a switch
