@@ -4,8 +4,8 @@
     /usr/bin/python3 analysis/rule_regret.py [--cli build/bin/ccdlab] [--configs 'experiments/configs/steady/*.yaml']
         [--threads 1,2] [--rounds 3] [--rules sixteenths,proximity,...] [--out results/regret]
 
-For every steady config and thread count (1: `sequential`; more: `--scheduler`, phc by default) it runs, in each
-round, the adaptive pipeline (every rule `auto`) and, per rule, the pipeline with that rule forced `on` and forced
+For every steady config and thread count (1: `sequential`; more: `--scheduler`, phc by default) it runs the
+adaptive pipeline once untimed (the first run after another config is slower), then, in each round, the adaptive pipeline (every rule `auto`) and, per rule, the pipeline with that rule forced `on` and forced
 `off` (the other rules adaptive), in an order that rotates from round to round; the time of a run is the median of
 `ms.total` over steps 2..N (the steady state: the build and the first refit left out), and a setting's time the
 median over rounds. Regret = adaptive / min(on, off) − 1: how much the rule's own choice lost against the better
@@ -62,6 +62,7 @@ def measure(cli, config, threads, scheduler, rules, rounds):
         variants += [(rule, v, [f"{RULES[rule]}={v}"]) for v in ("on", "off")]
     times = {(r, v): [] for r, v, _ in variants}
     hashes, revision = set(), "?"
+    run(cli, config, threads, scheduler, [])  # untimed: the first run after another config is slower (caches, pages)
     for k in range(rounds):
         shift = (k * 3) % len(variants)
         for rule, value, sets in variants[shift:] + variants[:shift]:
