@@ -19,8 +19,9 @@
 // The passes are exact culling: the contacts are the same whatever a rule decides, only the time moves. Timed
 // decisions may differ between runs and schedules; what a step *counts* (tests, pairs) then differs with them,
 // so the tests that compare work across schedules force every rule (PassChoice::on / off, StageRuleChoices).
-// Each re-measurement that confirms a choice doubles the rule's interval, up to kMaxPeriods periods; a switch
-// resets it, so a long run spends few steps on the worse choice and a change of regime is still seen.
+// Each re-measurement that confirms a choice makes the rule's interval four times longer, up to kMaxPeriods
+// periods; after a switch it is two periods, so a long run spends few steps on the worse choice and a change of
+// regime is still seen.
 #include <array>
 #include <cstdint>
 #include <utility>

@@ -14,16 +14,16 @@ TEST(CullPassRule, RunsWhileWhatItRemovedCostMoreThanItselfAndIsMeasuredAgainWit
   // 100 pairs removed at 150 ns a test save 15 µs: a pass of 20 µs does not pay, one of 10 µs does.
   EXPECT_LT(CullPassRule::net_saving(20000, 100, 150), 0);
   EXPECT_GT(CullPassRule::net_saving(10000, 100, 150), 0);
-  rule.record(CullPassRule::net_saving(20000, 100, 150));
-  for (std::uint64_t s = 1; s < kPeriod; ++s) EXPECT_FALSE(rule.runs(s)) << s;
-  EXPECT_TRUE(rule.runs(kPeriod)) << "measured again in the next period's slot";
-  EXPECT_TRUE(rule.remeasures(kPeriod));
-  rule.record(-1);  // confirmed: the interval doubles
-  EXPECT_FALSE(rule.runs(3 * kPeriod));
-  EXPECT_TRUE(rule.runs(4 * kPeriod));
+  rule.record(CullPassRule::net_saving(20000, 100, 150));  // switched off: checked again two periods on
+  for (std::uint64_t s = 1; s < 2 * kPeriod; ++s) EXPECT_FALSE(rule.runs(s)) << s;
+  EXPECT_TRUE(rule.runs(2 * kPeriod)) << "measured again in its slot";
+  EXPECT_TRUE(rule.remeasures(2 * kPeriod));
+  rule.record(-1);  // confirmed: the interval grows fourfold (to 8 periods)
+  EXPECT_FALSE(rule.runs(4 * kPeriod));
+  EXPECT_TRUE(rule.runs(8 * kPeriod));
   rule.record(+1);  // it pays now: it runs in every step
-  for (std::uint64_t s = 4 * kPeriod + 1; s < 6 * kPeriod; ++s) EXPECT_TRUE(rule.runs(s)) << s;
-  EXPECT_FALSE(rule.remeasures(4 * kPeriod + 1));
+  for (std::uint64_t s = 8 * kPeriod + 1; s < 10 * kPeriod; ++s) EXPECT_TRUE(rule.runs(s)) << s;
+  EXPECT_FALSE(rule.remeasures(8 * kPeriod + 1));
 }
 
 TEST(CullPassRule, ForcedIgnoresWhatItMeasures) {
@@ -41,17 +41,18 @@ TEST(SwitchRule, RunsItsChoiceAndTheOtherInItsSlotThenSwitchesWhenThatCostLess) 
   rule.measured(120, 0b01);
   rule.reference(100, 0b11);  // a reference that ran other passes: nothing decided
   EXPECT_TRUE(rule.chosen());
-  rule.reference(100, 0b01);  // the alternative cost more: kept, measured again two periods on
+  rule.reference(100, 0b01);  // the alternative cost more: kept, measured again four periods on
   EXPECT_TRUE(rule.chosen());
-  EXPECT_FALSE(rule.measures(kPeriod + RuleCalendar::triangles));
-  EXPECT_TRUE(rule.measures(2 * kPeriod + RuleCalendar::triangles));
+  EXPECT_FALSE(rule.measures(2 * kPeriod + RuleCalendar::triangles));
+  EXPECT_TRUE(rule.measures(4 * kPeriod + RuleCalendar::triangles));
   rule.reference(50, 0b01);  // decided already: a later clean step changes nothing
   EXPECT_TRUE(rule.chosen());
   rule.measured(80, 0b01);
-  rule.reference(100, 0b01);  // cheaper: switched, every period again
+  rule.reference(100, 0b01);  // cheaper: switched, checked again two periods on
   EXPECT_FALSE(rule.chosen());
-  EXPECT_FALSE(rule.runs(2 * kPeriod + RuleCalendar::triangles + 1));
-  EXPECT_TRUE(rule.runs(3 * kPeriod + RuleCalendar::triangles));
+  EXPECT_FALSE(rule.runs(4 * kPeriod + RuleCalendar::triangles + 1));
+  EXPECT_FALSE(rule.runs(5 * kPeriod + RuleCalendar::triangles));
+  EXPECT_TRUE(rule.runs(6 * kPeriod + RuleCalendar::triangles));
   SwitchRule forced(PassChoice::off, true, RuleCalendar::triangles);
   EXPECT_FALSE(forced.runs(RuleCalendar::triangles) || forced.measures(RuleCalendar::triangles));
 }
@@ -94,10 +95,14 @@ TEST(StageRules, EachRuleMeasuresInItsOwnSlotAgainstTheLastCleanStep) {
   }
   for (std::uint64_t s = kPeriod; s < 2 * kPeriod; ++s) {
     const StepPlan p = rules.plan(s, all);
-    const std::uint64_t k = s % kPeriod;
-    EXPECT_EQ(p.end_boxes, k != RuleCalendar::end_boxes_ready && k != RuleCalendar::end_boxes) << s;  // now on, tried off
-    EXPECT_TRUE(p.triangles) << s;  // confirmed: measured again only two periods on
+    EXPECT_TRUE(p.end_boxes) << s;   // switched on: tried off again two periods on
+    EXPECT_TRUE(p.triangles) << s;   // confirmed: measured again four periods on
     EXPECT_FALSE(p.carry) << s;
+    EXPECT_TRUE(p.clean) << s;
+  }
+  for (std::uint64_t s = 2 * kPeriod; s < 3 * kPeriod; ++s) {
+    const std::uint64_t k = s % kPeriod;
+    EXPECT_EQ(rules.plan(s, all).end_boxes, k != RuleCalendar::end_boxes_ready && k != RuleCalendar::end_boxes) << s;
   }
   // Impossible passes never run nor measure.
   const StepPlan none = rules.plan(RuleCalendar::triangles, StepPossible{});
@@ -116,8 +121,8 @@ TEST(StageRules, CertificatesMeasuredOnAreReadiedTheStepBefore) {
     EXPECT_EQ(p.certificates, s < RuleCalendar::certificates) << s;  // measured off, cheaper: kept off
     rules.record(s, p, costing(100), {s == RuleCalendar::certificates ? 50.0 : 100.0, 100});
   }
-  // Switched off: in a later period the step before the slot readies them, the slot uses them.
-  for (std::uint64_t s = 3 * kPeriod; s < 4 * kPeriod; ++s) {
+  // Switched off: two periods on, the step before the slot readies them, the slot uses them.
+  for (std::uint64_t s = 2 * kPeriod; s < 3 * kPeriod; ++s) {
     const StepPlan p = rules.plan(s, can);
     const std::uint64_t k = s % kPeriod;
     EXPECT_EQ(p.certificates, k == RuleCalendar::certificates_ready || k == RuleCalendar::certificates) << s;
@@ -139,11 +144,12 @@ TEST(StageRules, StageFourRunsOnlyWithTheSixteenthsAndEarnsForThem) {
   rules.record(1, p, c, {});
   p = rules.plan(2, can);
   EXPECT_TRUE(p.sixteenths && p.proximity);
-  // Stage 4 removes nothing any more: both stop (the sixteenths alone do not pay), until slot 0 measures again.
+  // Stage 4 removes nothing any more: both stop (the sixteenths alone do not pay), until slot 0 measures again,
+  // two periods on.
   c.proximity_culled = 0;
   rules.record(2, p, c, {});
-  for (std::uint64_t s = 3; s < kPeriod; ++s) EXPECT_FALSE(rules.plan(s, can).sixteenths) << s;
-  p = rules.plan(kPeriod, can);
+  for (std::uint64_t s = 3; s < 2 * kPeriod; ++s) EXPECT_FALSE(rules.plan(s, can).sixteenths) << s;
+  p = rules.plan(2 * kPeriod, can);
   EXPECT_TRUE(p.sixteenths && p.proximity);
   EXPECT_FALSE(p.clean) << "a step that runs a pass only to measure it is no reference";
 }
