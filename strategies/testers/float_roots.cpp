@@ -141,7 +141,8 @@ HWY_INLINE Coefficients<D> CubicOf(D d, const double* columns, std::size_t strid
 
 /// The setup of rows [i, i + lanes): coefficients, early outs, breakpoints and the first event among them.
 template <class D>
-HWY_INLINE RootSearch<D> StartSearch(D d, const double* columns, std::size_t stride, std::size_t i, double rel_tolerance) {
+HWY_INLINE RootSearch<D> StartSearch(D d, const double* columns, std::size_t stride, std::size_t i, double rel_tolerance,
+                                     hn::Vec<D> skip) {
   using V = hn::Vec<D>;
   using M = hn::Mask<D>;
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0), inf = hn::Set(d, HUGE_VAL), three = hn::Set(d, 3.0);
@@ -174,28 +175,32 @@ HWY_INLINE RootSearch<D> StartSearch(D d, const double* columns, std::size_t str
     exists[k] = hn::Ne(s[k], inf);
     value[k] = f(hn::IfThenElse(exists[k], s[k], zero));
   }
-  // The first event in order: a breakpoint where f touches zero (scalar), else the first sign change (root).
-  M found = hn::Or(decided, scalar), more = none, root = none;
+  // The events in order, as the scalar loop meets them: at each breakpoint, f touching zero there (the candidate
+  // is the breakpoint itself: lo = hi, nothing to refine), then a sign change up to the next one (a root, refined).
+  // The lane's candidate is its event number `skip` (0: the first); any event after it sets `more`.
+  const M open = hn::Not(hn::Or(decided, scalar));
+  M chosen = none, more = none;
+  V seen = zero;  // events met so far
   V lo = zero, hi = zero, flo = zero, fhi = zero;
   for (int k = 0; k < 4; ++k) {
-    const M touch = hn::And(exists[k], hn::Le(hn::Abs(value[k]), tol));
-    M change = none;
-    if (k + 1 < 4) {
-      const V u = value[k], w = value[k + 1];
-      const M sign = hn::Or(hn::And(hn::Lt(u, zero), hn::Gt(w, zero)), hn::And(hn::Gt(u, zero), hn::Lt(w, zero)));
-      change = hn::And(exists[k + 1], sign);
-    }
-    more = hn::Or(more, hn::And(root, hn::Or(touch, change)));
-    scalar = hn::Or(scalar, hn::AndNot(found, touch));
-    found = hn::Or(found, touch);
-    const M first = hn::AndNot(found, change);
-    if (k + 1 < 4) {
-      lo = hn::IfThenElse(first, s[k], lo), hi = hn::IfThenElse(first, s[k + 1], hi);
-      flo = hn::IfThenElse(first, value[k], flo), fhi = hn::IfThenElse(first, value[k + 1], fhi);
-    }
-    root = hn::Or(root, first);
-    found = hn::Or(found, first);
+    const M touch = hn::And(open, hn::And(exists[k], hn::Le(hn::Abs(value[k]), tol)));
+    more = hn::Or(more, hn::And(chosen, touch));
+    const M touch_chosen = hn::And(touch, hn::Eq(seen, skip));
+    lo = hn::IfThenElse(touch_chosen, s[k], lo), hi = hn::IfThenElse(touch_chosen, s[k], hi);
+    chosen = hn::Or(chosen, touch_chosen);
+    seen = hn::Add(seen, hn::IfThenElseZero(touch, one));
+    if (k + 1 == 4) break;
+    const V u = value[k], w = value[k + 1];
+    const M sign = hn::Or(hn::And(hn::Lt(u, zero), hn::Gt(w, zero)), hn::And(hn::Gt(u, zero), hn::Lt(w, zero)));
+    const M change = hn::And(open, hn::And(exists[k + 1], sign));
+    more = hn::Or(more, hn::And(chosen, change));
+    const M change_chosen = hn::And(change, hn::Eq(seen, skip));
+    lo = hn::IfThenElse(change_chosen, s[k], lo), hi = hn::IfThenElse(change_chosen, s[k + 1], hi);
+    flo = hn::IfThenElse(change_chosen, value[k], flo), fhi = hn::IfThenElse(change_chosen, value[k + 1], fhi);
+    chosen = hn::Or(chosen, change_chosen);
+    seen = hn::Add(seen, hn::IfThenElseZero(change, one));
   }
+  const M root = chosen;
   r.lo = lo, r.hi = hi, r.flo = flo, r.fhi = fhi, r.side = zero;
   r.scalar = scalar, r.root = root, r.more = more;
   r.active = hn::And(root, hn::Gt(hn::Sub(hi, lo), hn::Set(d, kIllinoisWidth)));
@@ -228,7 +233,7 @@ HWY_INLINE void IllinoisStep(D d, RootSearch<D>& r) {
 }
 
 void FirstCoplanarRoots(const double* columns, std::size_t stride, std::size_t n, double rel_tolerance,
-                        FirstRoot* kind, double* t_out, std::uint8_t* more_out) {
+                        const std::uint8_t* skip, FirstRoot* kind, double* t_out, std::uint8_t* more_out) {
   using D = hn::ScalableTag<double>;
   const D d;
   const std::size_t N = hn::Lanes(d);
@@ -239,7 +244,13 @@ void FirstCoplanarRoots(const double* columns, std::size_t stride, std::size_t n
   for (std::size_t i = 0; i < n; i += kGroup * N) {
     const std::size_t group = std::min(kGroup, (n - i + N - 1) / N);
     RootSearch<D> r[kGroup];
-    for (std::size_t g = 0; g < kGroup; ++g) r[g] = StartSearch(d, columns, stride, i + (g < group ? g : 0) * N, rel_tolerance);
+    for (std::size_t g = 0; g < kGroup; ++g) {
+      const std::size_t base = i + (g < group ? g : 0) * N;
+      HWY_ALIGN double skip_lanes[HWY_MAX_BYTES / sizeof(double)] = {};
+      if (skip)
+        for (std::size_t j = 0; j < N && base + j < n; ++j) skip_lanes[j] = skip[base + j];
+      r[g] = StartSearch(d, columns, stride, base, rel_tolerance, hn::Load(d, skip_lanes));
+    }
     for (std::size_t g = group; g < kGroup; ++g) r[g].active = hn::Ne(hn::Zero(d), hn::Zero(d));
     for (int it = 0; it < kIllinoisSteps; ++it) {
       bool any = false;
@@ -358,25 +369,46 @@ HWY_INLINE ClosestAt<D> PointTriangle(D d, const Xyz<V> (&pts)[4]) {
   return out;
 }
 
-/// closest_segment_segment (distance.cpp) of p[0] p[1] and p[2] p[3] where both segments have length and are not
-/// parallel; its other branches are left to it.
+/// closest_segment_segment (distance.cpp) of p[0] p[1] and p[2] p[3] where both segments have length, parallel
+/// ones included (edges of stacked cloth layers often are); point-like segments are left to it.
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE ClosestAt<D> SegmentSegment(D d, const Xyz<V> (&pts)[4]) {
+  using M = hn::Mask<D>;
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
   const Xyz<V>&p0 = pts[0], &p1 = pts[1], &q0 = pts[2], &q1 = pts[3];
   const Xyz<V> d1 = Minus(p1, p0), d2 = Minus(q1, q0), rr = Minus(p0, q0);
   const V a = Dot(d1, d1), e = Dot(d2, d2), f = Dot(d2, rr), c = Dot(d1, rr), b = Dot(d1, d2);
   const V denom = hn::Sub(hn::Mul(a, e), hn::Mul(b, b));
+  const M parallel = hn::Not(hn::Gt(denom, hn::Mul(hn::Mul(hn::Set(d, 1e-14), a), e)));
   ClosestAt<D> out;
-  out.scalar = hn::Or(hn::Or(hn::Eq(a, zero), hn::Eq(e, zero)),
-                      hn::Not(hn::Gt(denom, hn::Mul(hn::Mul(hn::Set(d, 1e-14), a), e))));
-  V s = Clamp01(d, hn::Div(hn::Sub(hn::Mul(b, f), hn::Mul(c, e)), denom));
+  out.scalar = hn::Or(hn::Or(hn::Eq(a, zero), hn::Eq(e, zero)), hn::Not(hn::IsFinite(denom)));  // and NaN, overflow
+  V s = hn::IfThenElse(parallel, zero, Clamp01(d, hn::Div(hn::Sub(hn::Mul(b, f), hn::Mul(c, e)), denom)));
   V t = hn::Div(hn::Add(hn::Mul(b, s), f), e);
   const auto below = hn::Lt(t, zero), above = hn::AndNot(below, hn::Gt(t, one));
   s = hn::IfThenElse(below, Clamp01(d, hn::Div(hn::Neg(c), a)), hn::IfThenElse(above, Clamp01(d, hn::Div(hn::Sub(b, c), a)), s));
   t = hn::IfThenElse(below, zero, hn::IfThenElse(above, one, t));
-  const Xyz<V> q = Minus(PlusScaled(p0, s, d1), PlusScaled(q0, t, d2));
-  out.distance_sq = Dot(q, q), out.u = s, out.v = t;
+  const auto gap_sq = [&](V s_, V t_) {
+    const Xyz<V> q = Minus(PlusScaled(p0, s_, d1), PlusScaled(q0, t_, d2));
+    return Dot(q, q);
+  };
+  if (!hn::AllFalse(d, parallel)) {
+    // Parallel: each end point against the other segment too, in the scalar function's order; a candidate
+    // replaces the best only when strictly closer.
+    V best = gap_sq(s, t);
+    const auto try_point = [&](const Xyz<V>& p, const Xyz<V>& o, const Xyz<V>& dir, V dd, bool on_p, V fixed) {
+      const V u = Clamp01(d, hn::Div(Dot(Minus(p, o), dir), dd));
+      const Xyz<V> g = Minus(PlusScaled(o, u, dir), p);
+      const M closer = hn::And(parallel, hn::Lt(Dot(g, g), best));
+      best = hn::IfThenElse(closer, Dot(g, g), best);
+      s = hn::IfThenElse(closer, on_p ? u : fixed, s);
+      t = hn::IfThenElse(closer, on_p ? fixed : u, t);
+    };
+    try_point(q0, p0, d1, a, true, zero);
+    try_point(q1, p0, d1, a, true, one);
+    try_point(p0, q0, d2, e, false, zero);
+    try_point(p1, q0, d2, e, false, one);
+  }
+  out.distance_sq = gap_sq(s, t), out.u = s, out.v = t;
   return out;
 }
 
@@ -502,9 +534,9 @@ namespace ccdlab {
 HWY_EXPORT(FirstCoplanarRoots);
 
 void first_coplanar_roots(const double* columns, std::size_t stride, std::size_t n, double rel_tolerance,
-                          FirstRoot* kind, double* t, std::uint8_t* more) {
+                          FirstRoot* kind, double* t, std::uint8_t* more, const std::uint8_t* skip) {
   if (n == 0) return;
-  HWY_DYNAMIC_DISPATCH(FirstCoplanarRoots)(columns, stride, n, rel_tolerance, kind, t, more);
+  HWY_DYNAMIC_DISPATCH(FirstCoplanarRoots)(columns, stride, n, rel_tolerance, skip, kind, t, more);
 }
 
 HWY_EXPORT(CubicColumnsFromPoints);

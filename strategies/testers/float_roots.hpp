@@ -10,11 +10,12 @@
 // bit for bit. It answers only what it can decide that way; the rest goes back to the scalar tester:
 //   - none:   f has no root and no touching point in [0, 1] — no contact (thickness 0; with thickness, t = 1
 //             is the only candidate left);
-//   - root:   `t` is the refined root of the first sign change, the first candidate time; the caller checks the
-//             distance there. When `more` is set, later candidates exist and a miss at `t` is not the answer;
+//   - root:   `t` is the first candidate time — a breakpoint where f touches zero (|f| within the tolerance), or
+//             else the refined root of the first sign change —; the caller checks the distance there. When
+//             `more` is set, later candidates exist and a miss at `t` is not the answer (`skip` asks for them);
 //   - coplanar: f ≡ 0 (every coefficient within 10⁻¹² of f_scale, all finite): coplanar motion, whose candidate
 //               times are crossings in the plane (coplanar_times below);
-//   - scalar: anything else (a breakpoint where f touches zero, non-finite coefficients).
+//   - scalar: anything else (non-finite coefficients, a root of f′ at ±0).
 // With thickness > 0 the ends of the step are candidates too, t = 0 before the kernel's and t = 1 after: the
 // caller checks the distance at t = 0 first (vertex_faces_at / edge_edges_at below) and at t = 1 where the
 // kernel's candidates end without a hit.
@@ -41,10 +42,12 @@ struct CubicColumns {
   enum : int { A0x, A0y, A0z, dAx, dAy, dAz, B0x, B0y, B0z, dBx, dBy, dBz, C0x, C0y, C0z, dCx, dCy, dCz, f_scale, count };
 };
 
-/// kind[i], t[i] and more[i] for rows [0, n) of the block; `rel_tolerance` as FloatTester's. The columns must
-/// be readable up to a multiple of 8 rows past n (the padding's answers are written and meaningless).
+/// kind[i], t[i] and more[i] for rows [0, n) of the block; `rel_tolerance` as FloatTester's. With `skip`, row i's
+/// candidate is its event number skip[i] in the scalar tester's order (0, the default: the first), so that a caller
+/// whose candidate missed with `more` set asks for the next one. The columns must be readable up to a multiple of 8
+/// rows past n (the padding's answers are written and meaningless).
 void first_coplanar_roots(const double* columns, std::size_t stride, std::size_t n, double rel_tolerance,
-                          FirstRoot* kind, double* t, std::uint8_t* more);
+                          FirstRoot* kind, double* t, std::uint8_t* more, const std::uint8_t* skip = nullptr);
 
 /// The proximity check at one time per row, for a block: the query's four points P0…P3 moving linearly
 /// (Pk(t) = Pk + t·dPk, relative to one origin as the scalar tester's), the time t and the reach. VF: P0 is the
@@ -76,7 +79,7 @@ void coplanar_times(const double* points, std::size_t stride, std::size_t n, Poi
                     std::uint8_t* scalar);
 
 /// A row's answer at its time: within reach (`hit`, with the contact's coordinates), not (`miss`), or a case the
-/// kernel leaves to the scalar function (a degenerate triangle, a point-like or parallel edge, a NaN).
+/// kernel leaves to the scalar function (a degenerate triangle, a point-like edge, a NaN).
 enum class AtTime : std::uint8_t { miss, hit, scalar };
 
 /// verdict[i] and, on a hit, coords[2i], coords[2i + 1] (CcdHit::coords) for rows [0, n): the scalar functions'

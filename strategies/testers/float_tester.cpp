@@ -325,9 +325,10 @@ void solve_coplanar(const double* points, std::size_t stride, std::span<const st
 
 /// Many queries: the root search of a block in SIMD (float_roots.hpp), then the distance at the root it found, in
 /// SIMD too (`Motion::hit` for the rows that kernel leaves), coplanar motions by their crossing times
-/// (solve_coplanar), and the whole scalar test where the root search cannot decide or later candidates follow a
-/// miss. The same answers as `solve`, bit for bit: the kernels' columns
-/// hold what `Motion::of` computes (the points relative to the origin, then A, B, C from them, L).
+/// (solve_coplanar), the candidates after a miss by further passes of the root search (each row asking for its
+/// next one), and the whole scalar test where the kernels cannot decide. The same answers as `solve`, bit for
+/// bit: the kernels' columns hold what `Motion::of` computes (the points relative to the origin, then A, B, C
+/// from them, L), and every candidate is tried in `solve`'s order.
 /// With thickness the ends of the step are candidates too, t = 0 before every other and t = 1 after: the distance
 /// at t = 0 is checked first, in SIMD, and only the rows it leaves go on to the root search (compacted); a row
 /// whose root search ends without a hit has its distance at t = 1 checked last.
@@ -345,6 +346,7 @@ void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) 
   std::array<std::uint8_t, kBlock> query_of;  // row of the (compacted) columns → query of the block
   std::array<std::uint8_t, kBlock> at_end_rows;  // rows whose answer is the distance at t = 1 (with thickness)
   std::array<std::uint8_t, kBlock> coplanar_rows;  // rows whose motion is coplanar
+  std::array<std::uint8_t, kBlock> again_rows;  // rows whose candidate missed with later ones behind it
   const auto set_time = [&](double t) { std::fill_n(points + kStride * PointColumns::t, kStride, t); };
   for (std::size_t b = 0; b < queries.size(); b += kBlock) {
     const std::size_t n = std::min(kBlock, queries.size() - b);
@@ -381,46 +383,65 @@ void solve_batch(std::span<const Query> queries, double thickness, CcdHit* out) 
         }
       if (rows == 0) continue;
     }
-    cubic_columns(points, kStride, rows, Motion::pairing, cubic);
-    first_coplanar_roots(cubic, kStride, rows, FloatTester::rel_tolerance, kind.data(), root.data(), more.data());
-    std::copy_n(root.data(), rows, points + kStride * PointColumns::t);
-    Motion::hits_at(points, kStride, rows, at_root.data(), coords.data());
-    std::size_t at_end = 0, coplanar = 0;
-    for (std::size_t r = 0; r < rows; ++r) {
-      const std::size_t i = query_of[r];
-      CcdHit& h = out[b + i];
-      if (kind[r] == FirstRoot::coplanar) {
-        coplanar_rows[coplanar++] = std::uint8_t(r);
-        continue;
+    // The root search, one candidate a row per pass: a row whose candidate missed with later ones behind it
+    // (`more`) asks for the next in the following pass, compacted with the others that do.
+    std::array<std::uint8_t, kBlock> skip{};  // per row: the candidates it has tried
+    for (;;) {
+      cubic_columns(points, kStride, rows, Motion::pairing, cubic);
+      first_coplanar_roots(cubic, kStride, rows, FloatTester::rel_tolerance, kind.data(), root.data(), more.data(), skip.data());
+      std::copy_n(root.data(), rows, points + kStride * PointColumns::t);
+      Motion::hits_at(points, kStride, rows, at_root.data(), coords.data());
+      std::size_t at_end = 0, coplanar = 0, again = 0;
+      for (std::size_t r = 0; r < rows; ++r) {
+        const std::size_t i = query_of[r];
+        CcdHit& h = out[b + i];
+        if (kind[r] == FirstRoot::coplanar) {
+          coplanar_rows[coplanar++] = std::uint8_t(r);
+          continue;
+        }
+        const bool miss = kind[r] == FirstRoot::root && at_root[r] == AtTime::miss;
+        if (miss && more[r]) {
+          again_rows[again++] = std::uint8_t(r);
+          continue;
+        }
+        // The kernel's candidates are spent without a hit: with thickness t = 1 is left, without it nothing.
+        if (kind[r] == FirstRoot::none || miss) {
+          if (thick) at_end_rows[at_end++] = std::uint8_t(r);
+          continue;
+        }
+        if (kind[r] == FirstRoot::root && at_root[r] == AtTime::hit) {
+          h = {true, root[r], {coords[2 * r], coords[2 * r + 1]}};
+          continue;
+        }
+        // What the kernels leave: the distance at the candidate, the whole test.
+        const Motion m = Motion::of(queries[b + i]);
+        if (!thick && kind[r] == FirstRoot::root && at_root[r] == AtTime::scalar &&
+            m.hit(root[r], thickness + FloatTester::rel_tolerance * m.L, h))
+          continue;
+        if (thick || kind[r] == FirstRoot::scalar || more[r]) h = solve(m, thickness);
       }
-      // The kernel's candidates are spent without a hit: with thickness t = 1 is left, without it nothing.
-      const bool ends = kind[r] == FirstRoot::none ||
-                        (kind[r] == FirstRoot::root && at_root[r] == AtTime::miss && !more[r]);
-      if (ends) {
-        if (thick) at_end_rows[at_end++] = std::uint8_t(r);
-        continue;
+      if (coplanar > 0)
+        solve_coplanar<Motion>(points, kStride, {coplanar_rows.data(), coplanar}, query_of.data(), queries.subspan(b),
+                               thickness, out + b);
+      if (at_end > 0) {
+        set_time(1.0);
+        Motion::hits_at(points, kStride, rows, at_root.data(), coords.data());
+        for (std::size_t e = 0; e < at_end; ++e) {
+          const std::size_t r = at_end_rows[e], i = query_of[r];
+          if (at_root[r] == AtTime::hit) out[b + i] = {true, 1.0, {coords[2 * r], coords[2 * r + 1]}};
+          else if (at_root[r] == AtTime::scalar) out[b + i] = solve(Motion::of(queries[b + i]), thickness);
+        }
       }
-      if (kind[r] == FirstRoot::root && at_root[r] == AtTime::hit) {
-        h = {true, root[r], {coords[2 * r], coords[2 * r + 1]}};
-        continue;
+      if (again == 0) break;
+      // Compacted in place (again_rows increases, so a row moves only down).
+      for (int column = 0; column < PointColumns::count; ++column) {
+        double* c = points + kStride * std::size_t(column);
+        for (std::size_t k = 0; k < again; ++k) c[k] = c[again_rows[k]];
+        std::fill(c + again, c + kStride, 0.0);
       }
-      // What the kernels leave: the distance at the root, later candidates after a miss, the whole test.
-      const Motion m = Motion::of(queries[b + i]);
-      if (!thick && kind[r] == FirstRoot::root && at_root[r] == AtTime::scalar &&
-          m.hit(root[r], thickness + FloatTester::rel_tolerance * m.L, h))
-        continue;
-      if (thick || kind[r] == FirstRoot::scalar || more[r]) h = solve(m, thickness);
-    }
-    if (coplanar > 0)
-      solve_coplanar<Motion>(points, kStride, {coplanar_rows.data(), coplanar}, query_of.data(), queries.subspan(b),
-                             thickness, out + b);
-    if (at_end == 0) continue;
-    set_time(1.0);
-    Motion::hits_at(points, kStride, rows, at_root.data(), coords.data());
-    for (std::size_t e = 0; e < at_end; ++e) {
-      const std::size_t r = at_end_rows[e], i = query_of[r];
-      if (at_root[r] == AtTime::hit) out[b + i] = {true, 1.0, {coords[2 * r], coords[2 * r + 1]}};
-      else if (at_root[r] == AtTime::scalar) out[b + i] = solve(Motion::of(queries[b + i]), thickness);
+      for (std::size_t k = 0; k < again; ++k)
+        query_of[k] = query_of[again_rows[k]], skip[k] = std::uint8_t(skip[again_rows[k]] + 1);
+      rows = again;
     }
   }
 }
