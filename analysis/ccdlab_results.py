@@ -8,6 +8,10 @@ A result folder holds:
 from __future__ import annotations
 
 import json
+import os
+import subprocess
+import sys
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -17,6 +21,20 @@ PHASES = ["build_ms", "swept_bv_ms", "refit_ms", "cones_ms", "traverse_ms", "nar
 OPTIONAL_PHASES = {"cones_ms"}  # absent from results written before normal-cone culling existed
 REQUIRED_COLUMNS = ["step", "bv_tests", "candidate_pairs", "vf_tests", "ee_tests", "contacts_vf", "contacts_ee",
                     "total_ms", *[p for p in PHASES if p not in OPTIONAL_PHASES]]
+
+
+def run_records(cli: str, config: str, sets: list[str], who: str, env: dict | None = None) -> list[dict]:
+    """Every record of steps.jsonl from `CLI run CONFIG --set S ... --no-progress` into a temporary folder; exits
+    naming `who`, the command and the end of its stderr when the run fails."""
+    with tempfile.TemporaryDirectory() as tmp:
+        args = [cli, "run", config, "--no-progress", "--set", f"output.dir={tmp}"]
+        for s in sets:
+            args += ["--set", s]
+        out = subprocess.run(args, capture_output=True, text=True, env={**os.environ, **(env or {})})
+        if out.returncode != 0:
+            sys.exit(f"{who}: {' '.join(args)} failed: {out.stderr.strip()[-300:]}")
+        with open(os.path.join(tmp, "steps.jsonl")) as f:
+            return [json.loads(line) for line in f]
 
 
 def read_table(path: Path, columns: list[str], hint: str) -> pd.DataFrame:

@@ -8,25 +8,18 @@ Prints one Markdown row per config: triangles, contacts per triangle, candidate 
 elementary tests that are hits, and what stages 0, 3 (halves and sixteenths) and 4 removed of what they received.
 """
 import argparse
-import json
 import os
-import subprocess
 import sys
-import tempfile
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from ccdlab_results import run_records  # noqa: E402
 
 FORCED = ["narrow.rules.triangles=on", "narrow.rules.sixteenths=on", "narrow.rules.proximity=on"]
 
 
 def first_step(cli, config):
-    with tempfile.TemporaryDirectory() as tmp:
-        args = [cli, "run", config, "--set", f"output.dir={tmp}", "--no-progress"]
-        for s in FORCED:
-            args += ["--set", s]
-        out = subprocess.run(args, capture_output=True, text=True)
-        if out.returncode != 0:
-            sys.exit(f"density_table: {' '.join(args)} failed: {out.stderr.strip()[-300:]}")
-        with open(os.path.join(tmp, "steps.jsonl")) as f:
-            records = [json.loads(line) for line in f]
+    records = run_records(cli, config, FORCED, "density_table")
     config = next(r for r in records if r.get("type") == "config")
     step = next(r for r in records if r.get("type") == "step")
     return config, step

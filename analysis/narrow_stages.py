@@ -13,25 +13,18 @@ the few that stage 1's final float test removes after stage 4), and ns per pair 
 the same contact hash (exit 1 otherwise).
 """
 import argparse
-import json
 import os
 import statistics
-import subprocess
 import sys
-import tempfile
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from ccdlab_results import run_records  # noqa: E402
 
 
 def run(cli, config, threads, sets, env):
-    with tempfile.TemporaryDirectory() as tmp:
-        args = [cli, "run", config, "--set", f"threads={threads}", "--set", f"output.dir={tmp}", "--no-progress"]
-        for s in sets:
-            args += ["--set", s]
-        out = subprocess.run(args, capture_output=True, text=True, env={**os.environ, **env})
-        if out.returncode != 0:
-            sys.exit(f"narrow_stages: {cli} run {config} failed: {out.stderr.strip()[-300:]}")
-        with open(os.path.join(tmp, "steps.jsonl")) as f:
-            steps = [json.loads(line) for line in f]
-    return [s for s in steps if "ms" in s and s.get("type") != "config"]
+    records = run_records(cli, config, [f"threads={threads}", *sets], "narrow_stages", env)
+    return [s for s in records if "ms" in s and s.get("type") != "config"]
 
 
 def stages(step):

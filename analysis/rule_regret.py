@@ -18,12 +18,13 @@ shows), and prints the table with the largest regret last.
 import argparse
 import csv
 import glob
-import json
 import os
 import statistics
-import subprocess
 import sys
-import tempfile
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from ccdlab_results import run_records  # noqa: E402
 
 # Each rule and the setting that forces it (the end boxes' is bv.end_boxes, the others narrow.rules.*).
 RULES = {
@@ -38,16 +39,7 @@ RULES = {
 
 def run(cli, config, threads, scheduler, sets):
     """(steady ms, hash, git revision) of one `ccdlab run`."""
-    with tempfile.TemporaryDirectory() as tmp:
-        args = [cli, "run", config, "--set", f"threads={threads}", "--set", f"scheduler={scheduler}",
-                "--set", f"output.dir={tmp}", "--no-progress"]
-        for s in sets:
-            args += ["--set", s]
-        out = subprocess.run(args, capture_output=True, text=True)
-        if out.returncode != 0:
-            sys.exit(f"rule_regret: {' '.join(args)} failed: {out.stderr.strip()[-300:]}")
-        with open(os.path.join(tmp, "steps.jsonl")) as f:
-            records = [json.loads(line) for line in f]
+    records = run_records(cli, config, [f"threads={threads}", f"scheduler={scheduler}", *sets], "rule_regret")
     steps = [r for r in records if r.get("type") == "step"]
     config_record = next((r for r in records if r.get("type") == "config"), {})
     ms = [s["ms"]["total"] for s in steps][2:] or [s["ms"]["total"] for s in steps]

@@ -13,25 +13,20 @@ instructions cost with every record at hand — the bound the larger steps are m
 "What a BV test costs"). The rest, per test, is waiting for records.
 """
 import argparse
-import json
 import os
 import statistics
-import subprocess
 import sys
-import tempfile
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from ccdlab_results import run_records  # noqa: E402
 
 RECORD_BYTES = 352  # WideLayout's record at K = 18 (docs/appendix-wide-bvh.md)
 
 
 def run(cli, config, resolution, threads):
-    with tempfile.TemporaryDirectory() as tmp:
-        args = [cli, "run", config, "--no-progress", "--set", f"scene.resolution={resolution}", "--set",
-                f"threads={threads}", "--set", "scheduler.name=sequential", "--set", f"output.dir={tmp}"]
-        out = subprocess.run(args, capture_output=True, text=True)
-        if out.returncode != 0:
-            sys.exit(f"traversal_bound: {' '.join(args)} failed: {out.stderr.strip()[-300:]}")
-        with open(os.path.join(tmp, "steps.jsonl")) as f:
-            records = [json.loads(line) for line in f]
+    records = run_records(cli, config, [f"scene.resolution={resolution}", f"threads={threads}",
+                                        "scheduler.name=sequential"], "traversal_bound")
     summary = next(r for r in records if r.get("type") == "summary")
     return [r for r in records if r.get("type") == "step"][2:], summary["triangles"]
 
