@@ -1,6 +1,7 @@
 #include "framework/narrow/rules/stage_rules.hpp"
 
 #include <algorithm>
+#include <array>
 
 namespace ccdlab {
 
@@ -71,6 +72,10 @@ double StageRules::narrow_ns(const NarrowCounters& c) {
 }
 
 void StageRules::record(std::uint64_t step, const StepPlan& plan, const NarrowCounters& c, const StepCost& cost) {
+  const auto choices = [&] {
+    return std::array{triangles_.chosen(), carry_.chosen(), certificates_.chosen(), end_boxes_.chosen()};
+  };
+  const auto before = choices();
   // The culling passes, from their own step: each removed pair would have been tested.
   if (const std::uint64_t tests = c.vf_tests + c.ee_tests; tests > 0) ns_per_test_ = double(c.test_ns) / double(tests);
   if (ns_per_test_ >= 0) {
@@ -102,6 +107,16 @@ void StageRules::record(std::uint64_t step, const StepPlan& plan, const NarrowCo
     reference_ = cost;
     reference_signature_ = signature;
   }
+  // An A/B switch leaves every other choice measured under the old combination: measured again at their next
+  // slots (the switched rule keeps its own interval). The culling passes' own decisions, taken every step they
+  // run, trigger nothing: step-to-step noise would keep every rule measuring.
+  const auto after = choices();
+  if (after == before) return;
+  SwitchRule* const switches[] = {&triangles_, &carry_, &certificates_, &end_boxes_};
+  for (std::size_t i = 0; i < std::size(switches); ++i)
+    if (after[i] == before[i]) switches[i]->remeasure_soon();
+  sixteenths_.remeasure_soon();
+  proximity_.remeasure_soon();
 }
 
 }  // namespace ccdlab

@@ -21,7 +21,10 @@
 // so the tests that compare work across schedules force every rule (PassChoice::on / off, StageRuleChoices).
 // Each re-measurement that confirms a choice makes the rule's interval four times longer, up to kMaxPeriods
 // periods; after a switch it is two periods, so a long run spends few steps on the worse choice and a change of
-// regime is still seen.
+// regime is still seen. An A/B rule's switch also makes every other rule measure again at its next slot: their
+// choices were measured with the old one, and the passes interact (stage 0 decides how much the orphan carry
+// costs, say), so rules that each decide with the others fixed could otherwise sit on a worse combination for
+// periods.
 #include <array>
 #include <cstdint>
 #include <utility>
@@ -62,13 +65,14 @@ struct StageRuleChoices {
 /// The one calendar: a period of kPeriod steps, in which each rule has its slot. Slot 0 re-measures the culling
 /// passes that do not run (they decide again in steps 0 and 1); each A/B rule runs its other choice in its slot,
 /// between clean steps (its reference), the rules that can move a step most first: the end boxes (the
-/// traversal and every candidate), the orphan carry (the whole orphan loop), stage 0, the certificates. A first
-/// step with end boxes pays for arrays touched cold, so the step before their slot runs them too, unmeasured (as
-/// the certificates' needs the budgets to skip by).
+/// traversal and every candidate), stage 0, the orphan carry (the whole orphan loop; after stage 0, because
+/// every candidate stage 0 keeps carries its orphans, so stage 0's choice sets what carrying costs), the
+/// certificates. The step before the end boxes' slot runs them too, unmeasured, so that the measured one finds
+/// their arrays warm (as the certificates' needs the budgets to skip by).
 struct RuleCalendar {
   static constexpr std::uint64_t kPeriod = 16;
   static constexpr std::uint64_t kMaxPeriods = 8;  ///< longest interval between re-measurements, in periods
-  enum Slot : std::uint64_t { passes = 0, end_boxes_ready = 2, end_boxes = 3, carry = 5, triangles = 7, certificates_ready = 9, certificates = 10 };
+  enum Slot : std::uint64_t { passes = 0, end_boxes_ready = 2, end_boxes = 3, triangles = 5, carry = 7, certificates_ready = 9, certificates = 10 };
   /// Whether `step` is `slot` of a period that a rule re-measuring every `periods` periods measures in.
   [[nodiscard]] static bool at(std::uint64_t step, Slot slot, std::uint64_t periods) {
     return step % kPeriod == slot && (step / kPeriod) % periods == 0;
@@ -89,6 +93,8 @@ class CullPassRule {
   }
   /// A step's net saving (net_saving plus what the passes that need this one saved), when the pass ran.
   void record(double net);
+  /// Another rule switched: a pass that does not pay is measured again at the next `passes` slot.
+  void remeasure_soon() { periods_ = 1; }
 
  private:
   PassChoice choice_;
@@ -116,6 +122,8 @@ class SwitchRule {
   void measured(double cost, unsigned reference_signature, unsigned mask = ~0u);
   /// A clean step: if a measurement waits for a reference of this signature, the rule decides.
   void reference(double cost, unsigned signature);
+  /// Another rule switched: the alternative is measured again at the rule's next slot.
+  void remeasure_soon() { periods_ = 1; }
 
  private:
   PassChoice choice_;

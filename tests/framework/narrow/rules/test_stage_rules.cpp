@@ -110,6 +110,32 @@ TEST(StageRules, EachRuleMeasuresInItsOwnSlotAgainstTheLastCleanStep) {
   EXPECT_TRUE(none.clean);
 }
 
+TEST(StageRules, ASwitchMakesEveryOtherRuleMeasureAgainAtItsNextSlot) {
+  StageRules rules({}, PassChoice::adaptive);
+  const StepPossible all{true, true, true, true, true};
+  // Period 0: the end boxes switch on (their step costs 50), the others are confirmed (every other step 100):
+  // they would wait four periods. Period 2: the end boxes, measured off again, cost less off and switch back
+  // (step 2·16 + 3); stage 0 and the carry, whose slots come later, measure again in that same period.
+  for (std::uint64_t s = 0; s < 3 * kPeriod; ++s) {
+    const StepPlan p = rules.plan(s, all);
+    const std::uint64_t k = s % kPeriod;
+    const bool ends_measured = k == RuleCalendar::end_boxes && s / kPeriod != 1;
+    if (s >= 2 * kPeriod) {
+      EXPECT_EQ(p.carry, k == RuleCalendar::carry) << s;
+      EXPECT_EQ(p.triangles, k != RuleCalendar::triangles) << s;
+    } else if (s >= kPeriod) {
+      EXPECT_TRUE(p.clean) << s;
+    }
+    rules.record(s, p, costing(100), {100, ends_measured ? 50.0 : 100.0});
+  }
+  EXPECT_FALSE(rules.plan(3 * kPeriod, all).end_boxes) << "switched back off";
+  // Confirmed again there: four periods on.
+  for (std::uint64_t s = 3 * kPeriod; s < 4 * kPeriod; ++s) {
+    const StepPlan p = rules.plan(s, all);
+    EXPECT_TRUE(p.triangles && !p.carry) << s;
+  }
+}
+
 TEST(StageRules, CertificatesMeasuredOnAreReadiedTheStepBefore) {
   StageRuleChoices c;
   c.certificates = PassChoice::adaptive;
