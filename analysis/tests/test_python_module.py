@@ -182,3 +182,22 @@ def test_validate_scores_like_the_cli():
         ccdlab.validate(["hard-cases"], testers=["nope"])
     with pytest.raises(ccdlab.Error):
         ccdlab.validate(["/nonexistent/queries"])
+
+
+def test_the_stubs_list_every_setting_as_the_table_does():
+    """__init__.pyi's Options (the keywords' types for a type checker) is the settings table's
+    (framework/config/settings.def): a row added, renamed or retyped there fails here until the stub follows."""
+    stub = (ROOT / "experiments" / "python" / "ccdlab" / "__init__.pyi").read_text()
+    block = stub[stub.index("class Options(TypedDict, total=False):"):]
+    block = block[:block.index("\n\n")]
+    listed = [line.strip() for line in block.splitlines()[2:]]
+    assert listed == [f"{s['keyword']}: {s['type']}  # {s['doc']}" for s in ccdlab.settings()]
+
+
+def test_every_setting_is_a_keyword_whose_default_changes_nothing():
+    x0, x1, faces = falling_vertex()
+    reference = ccdlab.step(x0, x1, faces)["hash"]
+    for s in ccdlab.settings():
+        assert ccdlab.step(x0, x1, faces, **{s["keyword"]: s["default"]})["hash"] == reference, s["keyword"]
+    with pytest.raises(ccdlab.Error, match="ccdlab.step: rule_proximity: expected auto, on, off, true or false, got 'sometimes'"):
+        ccdlab.step(x0, x1, faces, rule_proximity="sometimes")

@@ -3,6 +3,7 @@
 
 #include "ccdlab/build_info.hpp"
 #include "experiments/cli/commands.hpp"
+#include "framework/config/settings.hpp"
 #include "framework/geometry/kdop.hpp"
 #include "strategies/registry.hpp"
 
@@ -26,8 +27,14 @@ void print_registry(const R& registry, const std::string& title) {
 
 }  // namespace
 
-int list_command() {
-  fmt::print("bv.k: {} (k-DOP axis tables in framework/geometry/kdop.hpp)\n\n", kKdopKs);
+int list_command(bool settings_table) {
+  if (settings_table) {  // docs/config.md's table, as Markdown
+    fmt::print("{}", settings_markdown(builtin_registries()));
+    return 0;
+  }
+  fmt::print("settings (ccdlab list --settings: key, default, accepted values, flag, keyword):\n");
+  for (const Setting& s : settings()) fmt::print("  {:<28} {}\n", s.key, s.doc);
+  fmt::print("\nbv.k: {} (k-DOP axis tables in framework/geometry/kdop.hpp)\n\n", kKdopKs);
   print_registry(builder_registry(), "hierarchy");
   print_registry(scheduler_registry(), "scheduler");
   print_registry(tester_registry(), "tester");

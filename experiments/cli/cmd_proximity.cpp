@@ -13,6 +13,7 @@
 #include "framework/pipeline/work_estimate.hpp"
 #include "framework/util/error.hpp"
 #include "framework/util/files.hpp"
+#include "framework/config/strategy_spec.hpp"
 #include "strategies/registry.hpp"
 
 namespace ccdlab::cli {
@@ -22,7 +23,7 @@ int proximity_command(const ProximityOptions& o) {
   if (!(o.dhat > 0) || !std::isfinite(o.dhat)) fail("--dhat {}: expected a finite distance > 0", o.dhat);
   PipelineConfig c = pipeline_config(o);
   c.normal_cones = false;
-  PipelineStrategies s = make_strategies(c, builder_registry(), scheduler_registry(), tester_registry(), flag_of);
+  PipelineStrategies s = make_strategies(c, builder_registry(), scheduler_registry(), tester_registry(), flag_of());
   const MeshData m = read_mesh(o.mesh);
   TriMesh mesh;
   try {
@@ -84,16 +85,16 @@ int proximity_command(const ProximityOptions& o) {
     j["query_ms"] = {{"first", first_ms}, {"refit_median", refit_ms.empty() ? nlohmann::json() : nlohmann::json(median(refit_ms))}};
     if (o.check)
       j["reference"] = {{"hash", fmt::format("{:016x}", reference_hash)}, {"ms", reference_ms}, {"equal", rc == 0}};
-    j["config"] = {{"k", o.k}, {"bv_width", o.width}, {"hierarchy", o.hierarchy}, {"scheduler", o.scheduler},
-                   {"threads", o.threads}, {"narrow", {{"mode", o.narrow}, {"representative", o.representative}}},
-                   {"memory_limit", o.memory_limit}, {"candidate_limit", o.candidate_limit}, {"time_limit", o.time_limit},
-                   {"repeat", o.repeat}, {"simd_target", plane_filter_target()}};
+    j["config"] = settings_json(c);
+    j["config"].erase("tester");  // the query tests distances, not motion
+    j["config"]["repeat"] = o.repeat;
+    j["config"]["simd_target"] = plane_filter_target();
     fmt::print("{}\n", j.dump(2));
     return rc;
   }
   fmt::print("ccdlab proximity {}: {} triangles, dhat {:g} ({:.3g} of the bounding-box diagonal), k={} width={} "
-             "scheduler={} threads={}\n\n", o.mesh, mesh.num_faces(), dhat, dhat / diagonal, o.k, o.width, o.scheduler,
-             o.threads);
+             "scheduler={} threads={}\n\n", o.mesh, mesh.num_faces(), dhat, dhat / diagonal, c.k, c.width,
+             strategy_spec_text(c.scheduler), c.threads);
   fmt::print("pairs closer than dhat: vf={} ee={}; hash {:016x}\n", vf, ee, r.hash);
   std::string by_type;
   for (const auto& [type, n] : types) by_type += fmt::format(" {}={}", type, n);

@@ -4,6 +4,8 @@
 // its earliest time of contact.
 
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 
 #include "experiments/cli/commands.hpp"
@@ -18,45 +20,24 @@
 #include "strategies/registry.hpp"
 
 namespace ccdlab::cli {
-namespace {
 
-template <class R>
-StrategyChoice choose(const R& registry, const std::string& option, const std::string& name) {
-  const auto* e = registry.find(name);
-  if (!e) fail("--{}: expected one of {}, got '{}'", option, fmt::join(registry.names(), ", "), name);
-  return {name, e->defaults()};
-}
+SettingName flag_of() { return setting_name(SettingSpelling::flag); }
 
-}  // namespace
-
-std::string flag_of(std::string_view key) {
-  if (key == "bv.width") return "--bv-width";
-  if (key == "bv.end_boxes") return "--end-boxes";
-  if (key == "narrow.mode") return "--narrow";
-  if (key == "narrow.representative") return "--representative";
-  std::string flag(key.substr(key.rfind('.') == std::string_view::npos ? 0 : key.rfind('.') + 1));
-  std::replace(flag.begin(), flag.end(), '_', '-');
-  return "--" + flag;
-}
-
-PipelineConfig pipeline_config(const PipelineFlags& o) {
-  PipelineConfig c;
-  c.k = o.k, c.width = o.width, c.threads = o.threads;
-  c.end_boxes = kEndBoxModes.parse(o.end_boxes, "--end-boxes");
-  c.memory_limit = o.memory_limit;
-  c.memory_limit_bytes = parse_memory_size(o.memory_limit, "--memory-limit");
-  c.candidate_limit = o.candidate_limit;
-  c.time_limit = o.time_limit;
-  c.narrow = {kNarrowModes.parse(o.narrow, "--narrow"), kRepresentativeRules.parse(o.representative, "--representative"), {}};
-  c.hierarchy = choose(builder_registry(), "hierarchy", o.hierarchy);
-  c.scheduler = choose(scheduler_registry(), "scheduler", o.scheduler);
-  c.tester = parse_strategy_spec(o.tester, "--tester ", "tester", tester_registry(), kDefaultTester);
+PipelineConfig pipeline_config(const PipelineFlags& f) {
+  const Registries reg = builtin_registries();
+  PipelineConfig c = default_config(reg);
+  for (std::size_t i = 0; i < f.options.size(); ++i) {
+    if (f.options[i].second->count() == 0) continue;
+    const Setting& s = *f.options[i].first;
+    const std::string name(s.flag_name());
+    s.set(c, setting_value_of_text(s, f.texts[i], name), reg, name);
+  }
   return c;
 }
 
 int step_command(const StepOptions& o) {
-  PipelineStrategies s = make_strategies(pipeline_config(o), builder_registry(), scheduler_registry(), tester_registry(), flag_of);
-  const EndBoxMode end_boxes = s.end_boxes;
+  const PipelineConfig c = pipeline_config(o);
+  PipelineStrategies s = make_strategies(c, builder_registry(), scheduler_registry(), tester_registry(), flag_of());
 
   MeshData m0 = read_mesh(o.mesh_t0);
   MeshData m1 = read_mesh(o.mesh_t1);
@@ -96,16 +77,17 @@ int step_command(const StepOptions& o) {
     j["vertices"] = mesh.num_vertices();
     j["orphans"] = {{"vf", pipeline.orphans().vf.size()}, {"ee", pipeline.orphans().ee.size()}};
     j["memory"]["estimate_mb"] =
-        double(estimate_pipeline_bytes(mesh, o.k, o.width, pipeline.orphans().vf.size() + pipeline.orphans().ee.size(),
+        double(estimate_pipeline_bytes(mesh, c.k, c.width, pipeline.orphans().vf.size() + pipeline.orphans().ee.size(),
                                        pipeline.end_boxes_kept())) / (1 << 20);
-    j["config"] = {{"k", o.k}, {"bv_width", o.width}, {"end_boxes", end_boxes_json(end_boxes)}, {"end_boxes_tested", pipeline.end_boxes_in_last_step()}, {"hierarchy", o.hierarchy}, {"scheduler", o.scheduler}, {"threads", o.threads}, {"tester", o.tester},
-                   {"narrow", {{"mode", o.narrow}, {"representative", o.representative}}}, {"memory_limit", o.memory_limit}, {"candidate_limit", o.candidate_limit}, {"time_limit", o.time_limit},
-                   {"simd_target", plane_filter_target()}};
+    j["config"] = settings_json(c);
+    j["config"]["end_boxes_tested"] = pipeline.end_boxes_in_last_step();
+    j["config"]["simd_target"] = plane_filter_target();
     fmt::print("{}\n", j.dump(2));
   } else {
     fmt::print("ccdlab step {} -> {}: {} triangles, k={} width={} hierarchy={} scheduler={} tester={} narrow={}/{} ({})\n\n",
-               o.mesh_t0, o.mesh_t1, mesh.num_faces(), o.k, o.width, o.hierarchy, o.scheduler, o.tester, o.narrow,
-               o.representative, plane_filter_target());
+               o.mesh_t0, o.mesh_t1, mesh.num_faces(), c.k, c.width, strategy_spec_text(c.hierarchy),
+               strategy_spec_text(c.scheduler), strategy_spec_text(c.tester), to_string(c.narrow.mode),
+               to_string(c.narrow.representative), plane_filter_target());
     print_table_header(stdout);
     print_table_row(stdout, "0", r);
     if (o.earliest)

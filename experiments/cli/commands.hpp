@@ -1,14 +1,21 @@
 #pragma once
 // The ccdlab subcommands. Each returns the process exit code; user errors are thrown as ccdlab::Error and
 // turned into a message on stderr and exit code 2 by main.
+#include <deque>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "framework/config/experiment.hpp"
 #include "framework/config/pipeline_config.hpp"
+#include "framework/config/settings.hpp"
 #include "framework/hierarchy/wide_bvh.hpp"
+
+namespace CLI {
+class Option;
+}  // namespace CLI
 
 namespace ccdlab::cli {
 
@@ -54,26 +61,17 @@ struct ExportOptions {
 };
 int export_command(const ExportOptions& o);
 
-/// The pipeline's settings as flags (`step`, `proximity`), their defaults those of PipelineSettings
-/// (pipeline_settings.hpp).
+/// The pipeline's settings as a command's flags (`step`, `proximity`): one per row of the settings table
+/// (framework/config/settings.def), added by main.cpp's add_setting_flags; what the command line gave is read
+/// by pipeline_config, each value checked as a YAML key's is and spelled as its flag in messages.
 struct PipelineFlags {
-  int k = PipelineSettings{}.k;
-  int width = PipelineSettings{}.width;
-  std::string end_boxes{to_string(PipelineSettings{}.end_boxes)};  ///< bv.end_boxes (kEndBoxModes)
-  std::string scheduler = kDefaultScheduler;
-  std::string hierarchy = kDefaultHierarchy;
-  std::string tester = kDefaultTester;
-  std::string narrow{to_string(NarrowOptions{}.mode)};
-  std::string representative{to_string(NarrowOptions{}.representative)};
-  int threads = PipelineSettings{}.threads;
-  std::string memory_limit = kDefaultMemoryLimit;
-  double candidate_limit = kDefaultCandidateLimit;
-  double time_limit = 0;
+  std::deque<std::string> texts;  ///< each flag's text as CLI11 writes it (a deque: the addresses stay)
+  std::vector<std::pair<const Setting*, const CLI::Option*>> options;  ///< texts[i]'s row and its flag
 };
-/// The flags as a pipeline's configuration, each checked as a YAML key is, spelled as its flag in messages.
+/// The configuration the flags give: the defaults, each given flag set through its row.
 PipelineConfig pipeline_config(const PipelineFlags& f);
 /// How the CLI spells a setting in messages: its flag (bv.width → --bv-width).
-std::string flag_of(std::string_view key);
+SettingName flag_of();
 
 struct StepOptions : PipelineFlags {
   std::string mesh_t0, mesh_t1;
@@ -124,7 +122,8 @@ struct ValidateOptions {
 };
 int validate_command(const ValidateOptions& o);
 
-int list_command();
+/// The registries and their parameters; with `settings_table`, docs/config.md's table of settings (Markdown).
+int list_command(bool settings_table = false);
 int info_command();
 
 }  // namespace ccdlab::cli

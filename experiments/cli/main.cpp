@@ -13,6 +13,7 @@
 #include "experiments/cli/commands.hpp"
 #include "framework/narrow/plane_filter.hpp"
 #include "framework/util/error.hpp"
+#include "strategies/registry.hpp"
 
 namespace {
 
@@ -26,27 +27,26 @@ int user_error(std::string_view message) {
   return kUserError;
 }
 
-/// The pipeline's settings as flags of `cmd` (step, proximity); --tester only where the command takes one.
-void add_pipeline_flags(CLI::App* cmd, ccdlab::cli::PipelineFlags& f, bool tester) {
-  cmd->add_option("--k", f.k, fmt::format("k-DOP: {}", ccdlab::kKdopKs))->capture_default_str();
-  cmd->add_option("--bv-width", f.width, "BVH width the traversal reads: 2 (binary) or 4")->capture_default_str();
-  cmd->add_flag("--end-boxes{on}", f.end_boxes,
-                "--end-boxes[=on|off|auto]: also drop node pairs apart on x, y or z at both ends of the step "
-                "(bv.end_boxes; auto, the default, measures them first: a one-step run does not test them)");
-  cmd->add_option("--scheduler", f.scheduler, "traversal scheduler")->capture_default_str();
-  cmd->add_option("--hierarchy", f.hierarchy, "hierarchy builder")->capture_default_str();
-  cmd->add_option("--threads", f.threads, "threads")->capture_default_str();
-  if (tester) cmd->add_option("--tester", f.tester, "primitive tester, e.g. conservative:delta=1e-4")->capture_default_str();
-  cmd->add_option("--narrow", f.narrow, "narrow phase: batched (SIMD culling stages) or scalar")
-      ->check(CLI::IsMember(ccdlab::kNarrowModes.names()))->capture_default_str();
-  cmd->add_option("--representative", f.representative, "representative rule: first_free or fixed (owners)")
-      ->check(CLI::IsMember(ccdlab::kRepresentativeRules.names()))->capture_default_str();
-  cmd->add_option("--memory-limit", f.memory_limit, "resident memory the step may use: 8GiB, 60%, none (above the "
-                  "predicted need it streams candidates to the narrow phase)")->capture_default_str();
-  cmd->add_option("--candidate-limit", f.candidate_limit, "refuse a step estimated to find more candidate triangle pairs "
-                  "per triangle than this (a thickness in the wrong unit); 0 = no limit")->capture_default_str();
-  cmd->add_option("--time-limit", f.time_limit, "seconds the step may run: past them it stops, exit 2; 0 = no limit")
-      ->capture_default_str();
+/// The pipeline's settings as flags of `cmd` (step, proximity): one per row of the settings table, less those the
+/// command does not take (`skip`: members).
+void add_setting_flags(CLI::App* cmd, ccdlab::cli::PipelineFlags& f, std::initializer_list<std::string_view> skip = {}) {
+  const ccdlab::PipelineConfig defaults = ccdlab::default_config(ccdlab::builtin_registries());
+  for (const ccdlab::Setting& s : ccdlab::settings()) {
+    if (std::find(skip.begin(), skip.end(), s.member) != skip.end()) continue;
+    std::string& text = f.texts.emplace_back();
+    const std::string doc = fmt::format("{} (accepts {})", s.doc, s.accepts(ccdlab::builtin_registries()));
+    // A flag whose column gives a bare value ({on}) is a flag that may take a value: --end-boxes, --end-boxes=off.
+    CLI::Option* opt = s.flag.find('{') != std::string_view::npos ? cmd->add_flag(std::string(s.flag), text, doc)
+                                                                  : cmd->add_option(std::string(s.flag), text, doc);
+    opt->type_name(s.kind == ccdlab::SettingKind::strategy ? "NAME[:K=V,…]"
+                   : s.kind == ccdlab::SettingKind::choice ? "NAME"
+                   : s.kind == ccdlab::SettingKind::memory ? "SIZE"
+                   : s.type == "int"                        ? "INT"
+                   : s.type == "double"                     ? "NUMBER"
+                                                            : "");
+    opt->default_str(std::visit([](const auto& v) { return fmt::format("{}", v); }, s.value(defaults)));
+    f.options.emplace_back(&s, opt);
+  }
 }
 
 }  // namespace
@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
   auto* step_cmd = app.add_subcommand("step", "one CCD step between two mesh files (PLY or OBJ)");
   step_cmd->add_option("t0", step.mesh_t0, "mesh at the start of the step")->required();
   step_cmd->add_option("t1", step.mesh_t1, "mesh at the end of the step (same topology)")->required();
-  add_pipeline_flags(step_cmd, step, true);
+  add_setting_flags(step_cmd, step);
   bool step_no_progress = false;
   step_cmd->add_flag("--no-progress", step_no_progress, "no progress line on stderr while a long step runs");
   step_cmd->add_option("--contacts", step.contacts_csv, "write contacts to this CSV (kind,a,b,c,d,toi,u,v,nx,ny,nz)");
@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
   proximity_cmd->add_option("mesh", proximity.mesh, "mesh file (PLY or OBJ)")->required();
   proximity_cmd->add_option("--dhat", proximity.dhat, "the distance: pairs closer than it are reported")->required();
   proximity_cmd->add_flag("--relative", proximity.relative, "--dhat is a fraction of the mesh's bounding-box diagonal");
-  add_pipeline_flags(proximity_cmd, proximity, false);
+  add_setting_flags(proximity_cmd, proximity, {"tester", "normal_cones"});
   proximity_cmd->add_option("--repeat", proximity.repeat, "queries on the same positions (the first builds the hierarchy, "
                             "the others refit it): ms of the first and median of the others")->capture_default_str();
   proximity_cmd->add_flag("--check", proximity.check, "also find the pairs without the hierarchy (a sweep over boxes, the "
@@ -164,7 +164,9 @@ int main(int argc, char** argv) {
   validate_cmd->add_flag("--json", validate.json, "print JSON instead of the table");
   validate_cmd->add_flag("--no-progress", validate_no_progress, "no progress line on stderr");
 
-  auto* list_cmd = app.add_subcommand("list", "registered strategies and their parameters");
+  auto* list_cmd = app.add_subcommand("list", "the settings, and the registered strategies and their parameters");
+  bool settings_table = false;
+  list_cmd->add_flag("--settings", settings_table, "print the settings table (docs/config.md's) as Markdown");
   auto* info_cmd = app.add_subcommand("info", "compiler, flags, OpenMP, git revision");
 
   // An unknown command is named (CLI11 would only say that a subcommand is required).
@@ -223,7 +225,7 @@ int main(int argc, char** argv) {
       validate.progress = !validate_no_progress;
       return validate_command(validate);
     }
-    if (*list_cmd) return list_command();
+    if (*list_cmd) return list_command(settings_table);
     if (*info_cmd) return info_command();
   } catch (const ccdlab::Error& e) {
     return user_error(e.what());

@@ -29,6 +29,7 @@
 #include "ccdlab/build_info.hpp"
 #include "ccdlab/ccdlab.hpp"
 #include "framework/config/pipeline_config.hpp"
+#include "framework/config/settings.hpp"
 #include "framework/config/strategy_spec.hpp"
 #include "framework/pipeline/bodies.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
@@ -120,69 +121,46 @@ TriMesh to_mesh(std::size_t vertices, const Triangles& faces, const char* call) 
   }
 }
 
-/// A strategy option: a name, "name:key=value,…", or a dict {"name": …, key: value}.
-template <class Product>
-StrategyChoice strategy_option(const py::handle& value, const std::string& key, const Registry<Product>& registry,
-                               const std::string& default_name, const char* call) {
-  const std::string where = std::string(call) + " " + key + "=";
-  if (py::isinstance<py::str>(value)) return parse_strategy_spec(value.cast<std::string>(), where, key, registry, default_name);
-  if (py::isinstance<py::dict>(value)) {
-    YAML::Node node(YAML::NodeType::Map);
-    for (const auto& [k, v] : value.cast<py::dict>())
-      node[py::str(k).cast<std::string>()] =
-          py::isinstance<py::bool_>(v) ? std::string(py::cast<bool>(v) ? "true" : "false") : std::string(py::str(v));
-    return strategy_from_node(node, where + std::string(py::repr(value)), key, registry, default_name);
+/// A keyword's value as its row of the settings table reads it (framework/config/settings.hpp): a bool, an int, a
+/// float, a str, or for a strategy a dict {"name": …, key: value} (written as "name:key=value,…").
+SettingValue setting_value(const Setting& s, const py::handle& value, const char* call) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();  // before int: a bool is an int to Python
+  if (py::isinstance<py::int_>(value)) return value.cast<long long>();
+  if (py::isinstance<py::float_>(value)) return value.cast<double>();
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (s.kind == SettingKind::strategy && py::isinstance<py::dict>(value)) {
+    const auto d = value.cast<py::dict>();
+    std::string spec = d.contains("name") ? py::str(d["name"]).cast<std::string>() : std::string();
+    char sep = ':';
+    for (const auto& [k, v] : d) {
+      const std::string key = py::str(k);
+      if (key == "name") continue;
+      spec += sep + key + "=" +
+              (py::isinstance<py::bool_>(v) ? std::string(v.cast<bool>() ? "true" : "false") : std::string(py::str(v)));
+      sep = ',';
+    }
+    return spec;
   }
-  fail("{}: expected a name, 'name:key=value,…' or a dict, got {}", where, py::str(value.get_type()).cast<std::string>());
+  fail("{}: {}: expected {}, got {}", call, s.member, s.kind == SettingKind::strategy ? "a name, 'name:key=value,…' or a dict" : "a bool, int, float or str", described(value));
 }
 
+/// The row of a keyword; an unknown one is an error that lists them all.
+const Setting& setting_of_keyword(const std::string& key, const char* call) {
+  if (const Setting* s = setting_of_member(key)) return *s;
+  fail("{}: unknown option '{}' ({})", call, key, setting_members());
+}
+
+/// kwargs → the pipeline's strategies and settings: the defaults, each keyword set through its row, spelled
+/// "<call>: keyword" in messages.
 PipelineStrategies strategies_from(const py::kwargs& options, const char* call) {
-  // The defaults (pipeline_settings.hpp; no memory limit: memory_limit_bytes stays 0), the strategies' parameters
-  // from their registries.
-  PipelineConfig c;
-  c.hierarchy.params = builder_registry().find(c.hierarchy.name)->defaults();
-  c.tester.params = tester_registry().find(c.tester.name)->defaults();
-  const auto named = [call](std::string_view key) { return fmt::format("{}: {}", call, key); };
+  const Registries reg = builtin_registries();
+  PipelineConfig c = default_config(reg);
   for (const auto& [key_handle, value] : options) {
-    const std::string key = py::str(key_handle);
-    if (key == "k") {
-      c.k = value.cast<int>();
-    } else if (key == "width") {
-      c.width = value.cast<int>();
-    } else if (key == "threads") {
-      c.threads = value.cast<int>();
-    } else if (key == "hierarchy") {
-      c.hierarchy = strategy_option(value, key, builder_registry(), kDefaultHierarchy, call);
-    } else if (key == "scheduler") {
-      c.scheduler = strategy_option(value, key, scheduler_registry(), kDefaultScheduler, call);
-    } else if (key == "tester") {
-      c.tester = strategy_option(value, key, tester_registry(), kDefaultTester, call);
-    } else if (key == "narrow") {
-      c.narrow.mode = kNarrowModes.parse(value.cast<std::string>(), named("narrow"));
-    } else if (key == "representative") {
-      c.narrow.representative = kRepresentativeRules.parse(value.cast<std::string>(), named("representative"));
-    } else if (key == "normal_cones") {
-      c.normal_cones = value.cast<bool>();
-    } else if (key == "candidate_limit") {
-      c.candidate_limit = value.cast<double>();
-    } else if (key == "time_limit") {
-      c.time_limit = value.cast<double>();
-    } else if (key == "end_boxes") {
-      c.end_boxes = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? EndBoxMode::on : EndBoxMode::off)
-                                                     : kEndBoxModes.parse(value.cast<std::string>(), named("end_boxes"));
-    } else {
-      fail("{}: unknown option '{}' (k, width, end_boxes, hierarchy, scheduler, threads, tester, narrow, representative, "
-           "normal_cones, candidate_limit, time_limit)", call, key);
-    }
+    const Setting& s = setting_of_keyword(py::str(key_handle), call);
+    s.set(c, setting_value(s, value, call), reg, fmt::format("{}: {}", call, s.member));
   }
-  // Python spells a setting by its keyword: bv.k → k, narrow.mode → narrow.
-  const auto keyword = [&](std::string_view key) {
-    if (key == "narrow.mode") return named("narrow");
-    if (key == "narrow.representative") return named("representative");
-    const std::size_t dot = key.rfind('.');
-    return named(dot == std::string_view::npos ? key : key.substr(dot + 1));
-  };
-  return make_strategies(c, builder_registry(), scheduler_registry(), tester_registry(), keyword);
+  return make_strategies(c, reg.builders, reg.schedulers, reg.testers,
+                         setting_name(SettingSpelling::member, std::string(call) + ": "));
 }
 
 py::dict result_dict(const StepResult& r, const Positions& x0, const Positions& x1) {
@@ -325,27 +303,30 @@ py::dict near_pairs(const Points& x0, const Points* x1, const Triangles& faces, 
   return d;
 }
 
-/// kwargs → the C++ API's Options: the same keywords as the functions' (strategies_from), plus memory_limit.
+/// kwargs → the C++ API's Options (the Detector's): the same keywords as the functions' (strategies_from).
 Options options_from(const py::kwargs& options, const char* call) {
   Options o;
   for (const auto& [key_handle, value] : options) {
-    const std::string key = py::str(key_handle);
-    if (key == "k") o.k = value.cast<int>();
-    else if (key == "width") o.width = value.cast<int>();
-    else if (key == "threads") o.threads = value.cast<int>();
-    else if (key == "hierarchy") o.hierarchy = strategy_spec_text(strategy_option(value, key, builder_registry(), kDefaultHierarchy, call));
-    else if (key == "scheduler") o.scheduler = strategy_spec_text(strategy_option(value, key, scheduler_registry(), kDefaultScheduler, call));
-    else if (key == "tester") o.tester = strategy_spec_text(strategy_option(value, key, tester_registry(), kDefaultTester, call));
-    else if (key == "narrow") o.narrow = value.cast<std::string>();
-    else if (key == "representative") o.representative = value.cast<std::string>();
-    else if (key == "normal_cones") o.normal_cones = value.cast<bool>();
-    else if (key == "memory_limit") o.memory_limit = value.cast<std::string>();
-    else if (key == "candidate_limit") o.candidate_limit = value.cast<double>();
-    else if (key == "time_limit") o.time_limit = value.cast<double>();
-    else if (key == "end_boxes")
-      o.end_boxes = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "on" : "off") : value.cast<std::string>();
-    else fail("{}: unknown option '{}' (k, width, end_boxes, hierarchy, scheduler, threads, tester, narrow, representative, "
-              "normal_cones, memory_limit, candidate_limit, time_limit)", call, key);
+    const Setting& s = setting_of_keyword(py::str(key_handle), call);
+    const SettingValue v = setting_value(s, value, call);
+    const auto put = [&](auto& member) {
+      using T = typename std::decay_t<decltype(member)>::value_type;
+      if constexpr (std::is_same_v<T, int>) {
+        if (const long long* i = std::get_if<long long>(&v); i && *i == int(*i)) return void(member = int(*i));
+      } else if constexpr (std::is_same_v<T, double>) {
+        if (const long long* i = std::get_if<long long>(&v)) return void(member = double(*i));
+        if (const double* d = std::get_if<double>(&v)) return void(member = *d);
+      } else if constexpr (std::is_same_v<T, bool>) {
+        if (const bool* b = std::get_if<bool>(&v)) return void(member = *b);
+      } else {
+        if (const std::string* t = std::get_if<std::string>(&v)) return void(member = *t);
+        if (const bool* b = std::get_if<bool>(&v)) return void(member = *b ? "true" : "false");
+      }
+      fail("{}: {}: expected {}, got {}", call, s.member, s.type, describe(v));
+    };
+#define CCDLAB_SETTING(kind, name, ...) if (s.member == #name) put(o.name);
+#include "framework/config/settings.def"
+#undef CCDLAB_SETTING
   }
   return o;
 }
@@ -610,4 +591,25 @@ PYBIND11_MODULE(_ccdlab, m) {
       .def_property_readonly("options", &PyDetector::options, "the options in effect, every default filled in (YAML)");
   m.def("schedulers", [] { return scheduler_registry().names(); }, "the registered traversal schedulers");
   m.def("testers", [] { return tester_registry().names(); }, "the registered elementary testers");
+  m.def("settings", [] {
+    // The settings table (framework/config/settings.def): what every function and Detector takes by keyword.
+    const PipelineConfig defaults = default_config(builtin_registries());
+    py::list rows;
+    for (const Setting& s : settings()) {
+      py::dict row;
+      row["keyword"] = std::string(s.member);
+      row["type"] = s.kind == SettingKind::strategy ? "Strategy"
+                    : s.type == "int"              ? "int"
+                    : s.type == "double"           ? "float"
+                    : s.type == "bool"             ? "bool"
+                                                   : "str";
+      row["key"] = std::string(s.key);
+      row["flag"] = std::string(s.flag_name());
+      row["default"] = std::visit([](const auto& v) { return py::cast(v); }, s.value(defaults));
+      row["accepts"] = s.accepts(builtin_registries());
+      row["doc"] = std::string(s.doc);
+      rows.append(row);
+    }
+    return rows;
+  }, "the settings every function takes by keyword: keyword, type, key, flag, default, accepts, doc");
 }

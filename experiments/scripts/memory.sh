@@ -12,7 +12,7 @@ t1="${2:-$data/balls16_19.ply}"
 [ -x build/bin/ccdlab ] || experiments/scripts/build.sh release >&2
 row='import json, sys
 j = json.load(sys.stdin); m, c, cfg = j["memory"], j["contacts"], j["config"]
-print("| {} | {} | {:.0f} | {} | {:.0f} | {} + {} | {} |".format(cfg["scheduler"], cfg["memory_limit"], m["peak_rss_mb"],
+print("| {} | {} | {:.0f} | {} | {:.0f} | {} + {} | {} |".format(cfg["scheduler"]["name"], cfg["memory_limit"], m["peak_rss_mb"],
       m["streamed_slices"], j["ms"]["total"], c["vf"], c["ee"], j["hash"]))'
 echo "| scheduler | memory_limit | peak RSS of the step (MiB) | streamed slices | ms | contacts (vf + ee) | hash |"
 echo "|---|---|---|---|---|---|---|"

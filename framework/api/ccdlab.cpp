@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "framework/config/experiment.hpp"
+#include "framework/config/settings.hpp"
 #include "framework/config/strategy_spec.hpp"
 #include "framework/mesh/mesh_io.hpp"
 #include "framework/pipeline/bodies.hpp"
@@ -33,31 +34,24 @@ auto named(std::string_view call, F&& f) {
   }
 }
 
-/// How Options spells each setting in messages (PipelineSettings::validate's SettingName).
-std::string option_name(std::string_view key) {
-  if (key == "narrow.mode") return "Options::narrow";
-  if (key == "narrow.representative") return "Options::representative";
-  const std::size_t dot = key.rfind('.');
-  return "Options::" + std::string(dot == std::string_view::npos ? key : key.substr(dot + 1));
-}
+/// How Options spells a setting in messages: "Options::member".
+SettingName option_name() { return setting_name(SettingSpelling::member, "Options::"); }
 
-/// Options → the pipeline's configuration, checked by the settings' one check (PipelineSettings::validate) and the
-/// registries, as a YAML file's is.
+/// Options → the pipeline's configuration: each member that is set goes through its row of the settings table
+/// (framework/config/settings.hpp), checked as a YAML file's value is and spelled "Options::member" in messages.
 PipelineConfig config_of(const Options& o) {
   const Registries reg = builtin_registries();
-  PipelineConfig c;
-  c.k = o.k, c.width = o.width, c.threads = o.threads, c.normal_cones = o.normal_cones;
-  c.end_boxes = kEndBoxModes.parse(o.end_boxes, "Options::end_boxes");
-  c.hierarchy = parse_strategy_spec(o.hierarchy, "Options::hierarchy = ", "hierarchy", reg.builders, kDefaultHierarchy);
-  c.scheduler = parse_strategy_spec(o.scheduler, "Options::scheduler = ", "scheduler", reg.schedulers, kDefaultScheduler);
-  c.tester = parse_strategy_spec(o.tester, "Options::tester = ", "tester", reg.testers, kDefaultTester);
-  c.narrow.mode = kNarrowModes.parse(o.narrow, "Options::narrow");
-  c.narrow.representative = kRepresentativeRules.parse(o.representative, "Options::representative");
-  c.memory_limit = o.memory_limit;
-  c.memory_limit_bytes = parse_memory_size(o.memory_limit, "Options::memory_limit");
-  c.candidate_limit = o.candidate_limit;
-  c.time_limit = o.time_limit;
-  c.validate(option_name);
+  PipelineConfig c = default_config(reg);
+  const auto set = [&](std::string_view member, const auto& value) {
+    if (!value) return;
+    const Setting& s = *setting_of_member(member);
+    if constexpr (std::is_same_v<std::decay_t<decltype(*value)>, int>) s.set(c, (long long)*value, reg, "Options::" + std::string(member));
+    else s.set(c, *value, reg, "Options::" + std::string(member));
+  };
+#define CCDLAB_SETTING(kind, member, ...) set(#member, o.member);
+#include "framework/config/settings.def"
+#undef CCDLAB_SETTING
+  c.validate(option_name());
   return c;
 }
 
@@ -85,26 +79,28 @@ MeshFile read_mesh(const std::filesystem::path& path) {
 
 Options Options::from_yaml(std::string_view yaml, std::string_view source) {
   const std::string where(source);
-  const YAML::Node root = parse_yaml(std::string(yaml), where);
-  if (root.IsNull()) return Options{};
+  YAML::Node root = parse_yaml(std::string(yaml), where);
+  if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);  // no text: every default
   if (!root.IsMap()) fail("{}: expected a mapping of option keys (scheduler: …, threads: …)", where);
   const YamlReader r(where, {});
-  r.check_keys(root, "", {"bv", "hierarchy", "scheduler", "threads", "tester", "narrow", "normal_cones", "memory_limit", "candidate_limit",
-                          "time_limit"});
-  PipelineConfig c;
+  r.check_keys(root, "", setting_roots());
+  const Registries reg = builtin_registries();
+  PipelineConfig c = default_config(reg);
   try {
-    read_strategy_section(r, root, builtin_registries(), c);
+    read_settings(r, root, reg, c);
   } catch (const YAML::Exception& e) {
     fail("{}:{}: {}", where, e.mark.line + 1, e.msg);
   }
   Options o;
-  o.k = c.k, o.width = c.width, o.end_boxes = to_string(c.end_boxes), o.threads = c.threads, o.normal_cones = c.normal_cones;
-  o.hierarchy = strategy_spec_text(c.hierarchy), o.scheduler = strategy_spec_text(c.scheduler), o.tester = strategy_spec_text(c.tester);
-  o.narrow = to_string(c.narrow.mode);
-  o.representative = to_string(c.narrow.representative);
-  o.memory_limit = c.memory_limit;
-  o.candidate_limit = c.candidate_limit;
-  o.time_limit = c.time_limit;
+  const auto take = [&](std::string_view member, auto& out) {
+    const SettingValue v = setting_of_member(member)->value(c);
+    using T = typename std::decay_t<decltype(out)>::value_type;
+    if constexpr (std::is_same_v<T, int>) out = int(std::get<long long>(v));
+    else out = std::get<T>(v);
+  };
+#define CCDLAB_SETTING(kind, member, ...) take(#member, o.member);
+#include "framework/config/settings.def"
+#undef CCDLAB_SETTING
   return o;
 }
 
@@ -125,7 +121,7 @@ struct Detector::Impl {
     vertices = vertex_count;
     mesh.emplace(vertex_count, faces);
     bodies = given.empty() ? single_cloth_body(*mesh) : std::move(given);
-    pipeline = std::make_unique<CcdPipeline>(*mesh, bodies, make_strategies(config, builtin_registries(), option_name));
+    pipeline = std::make_unique<CcdPipeline>(*mesh, bodies, make_strategies(config, builtin_registries(), option_name()));
   }
   /// Checks a frame's size (fixing the vertex count on the first call) and its positions.
   Positions frame(std::span<const Point> x, const char* name) {
@@ -150,7 +146,7 @@ struct Detector::Impl {
       PipelineConfig c = config;
       c.normal_cones = false;
       if (proximity.size() == kProximityQueries) proximity.erase(proximity.begin());
-      proximity.push_back(std::make_unique<ProximityQuery>(*mesh, bodies, make_strategies(c, builtin_registries(), option_name), dhat));
+      proximity.push_back(std::make_unique<ProximityQuery>(*mesh, bodies, make_strategies(c, builtin_registries(), option_name()), dhat));
       kept = proximity.end() - 1;
     }
     Proximities out;
@@ -168,7 +164,7 @@ struct Detector::Impl {
       c.normal_cones = false;
       c.tester = parse_strategy_spec(fmt::format("conservative:thickness={}", s), "separation: ", "tester",
                                      builtin_registries().testers, kDefaultTester);
-      step_size = std::make_unique<CcdPipeline>(*mesh, bodies, make_strategies(c, builtin_registries(), option_name));
+      step_size = std::make_unique<CcdPipeline>(*mesh, bodies, make_strategies(c, builtin_registries(), option_name()));
       separation = s;
     }
     return step_size->earliest_toi(x0, x1);
@@ -260,9 +256,7 @@ Detector::ActiveSetAndStep Detector::active_set_and_step(std::span<const Point> 
 }
 
 std::string Detector::resolved_options() const {
-  nlohmann::json j = to_json(impl_->config);
-  for (const char* key : {"name", "scene", "output", "restructure"}) j.erase(key);
-  return to_yaml(j);
+  return to_yaml(settings_json(impl_->config));
 }
 
 }  // namespace ccdlab

@@ -4,6 +4,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "framework/config/settings.hpp"
+#include "framework/config/strategy_spec.hpp"
 #include "framework/config/yaml_reader.hpp"
 #include "framework/geometry/kdop.hpp"
 #include "framework/hierarchy/wide_bvh.hpp"
@@ -115,16 +117,6 @@ SceneConfig read_scene(const YamlReader& r, const YAML::Node& node, const std::s
   return scene;
 }
 
-nlohmann::json params_json(const StrategyChoice& c) {
-  nlohmann::json j;
-  j["name"] = c.name;
-  for (const auto& [key, v] : c.params.all()) {
-    const std::string& k = key;  // a structured binding cannot be captured by clang 14
-    std::visit([&](const auto& x) { j[k] = x; }, v);
-  }
-  return j;
-}
-
 void emit(YAML::Emitter& out, const nlohmann::json& j) {
   if (j.is_object()) {
     out << YAML::BeginMap;
@@ -188,16 +180,18 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
     if (!overridden.insert(apply_override(root, o)).second)
       fail("--set {}: {} is set twice; give each key once", o, o.substr(0, o.find('=')));
   YamlReader r(path, overridden);
-  r.check_keys(root, "", {"name", "scene", "bv", "hierarchy", "restructure", "normal_cones", "scheduler", "threads", "tester",
-                   "narrow", "memory_limit", "candidate_limit", "time_limit", "replay",
-                   "output"});
+  std::vector<std::string> keys{"name", "scene"};
+  for (const std::string& k : setting_roots()) keys.push_back(k);
+  keys.insert(keys.end(), {"replay", "output"});
+  r.check_keys(root, "", keys);
 
   ExperimentConfig c;
+  static_cast<PipelineConfig&>(c) = default_config(reg);
   c.source = path;
   c.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
   if (!root["scene"]) fail("{}: scene: required key missing (e.g. scene: {{builtin: drape_fold}})", path);
   c.scene = read_scene(r, root["scene"], path, reg);
-  read_strategy_section(r, root, reg, c);
+  read_settings(r, root, reg, c);
   if (const YAML::Node n = root["replay"]) {
     r.check_keys(n, "replay", {"step", "frames"});
     if (!n["step"])
@@ -216,93 +210,6 @@ ExperimentConfig load_experiment_checked(const std::string& path, const std::vec
   return c;
 }
 }  // namespace
-
-void read_strategy_section(const YamlReader& r, const YAML::Node& root, const Registries& reg, PipelineConfig& c) {
-  // Each value is read as its type, then checked by the one check of its setting (pipeline_settings.hpp), located.
-  const auto checked = [&](const YAML::Node& node, const char* key, long long value, std::string (*check)(long long)) {
-    if (const std::string expected = check(value); !expected.empty()) r.error(node, key, expected);
-    return int(value);
-  };
-  const auto named = [&](const YAML::Node& node, const std::string& key, const auto& values) {
-    const auto v = values.find(r.string(node, key));
-    if (!v) r.error(node, key, values.expected());
-    return *v;
-  };
-  if (root["bv"]) {
-    r.check_keys(root["bv"], "bv", {"k", "width", "end_boxes"});
-    if (const YAML::Node n = root["bv"]["k"]) c.k = checked(n, "bv.k", r.integer(n, "bv.k", -1e18, 1e18), setting_check::k);
-    if (const YAML::Node n = root["bv"]["width"])
-      c.width = checked(n, "bv.width", r.integer(n, "bv.width", -1e18, 1e18), setting_check::width);
-    if (const YAML::Node n = root["bv"]["end_boxes"]) c.end_boxes = named(n, "bv.end_boxes", kEndBoxModes);
-  }
-  auto strategy = [&](const char* key, const auto& registry, const std::string& default_name) {
-    return root[key] ? r.strategy(root[key], key, registry, default_name)
-                     : StrategyChoice{default_name, registry.find(default_name)->defaults()};
-  };
-  c.hierarchy = strategy("hierarchy", reg.builders, c.hierarchy.name);
-  c.scheduler = strategy("scheduler", reg.schedulers, c.scheduler.name);
-  c.tester = strategy("tester", reg.testers, c.tester.name);
-  if (const YAML::Node rs = root["restructure"]) {
-    r.check_keys(rs, "restructure", {"threshold"});
-    if (const YAML::Node n = rs["threshold"]) {
-      c.restructure_threshold = r.real(n, "restructure.threshold", -1e300, 1e300);
-      if (const std::string expected = setting_check::restructure_threshold(c.restructure_threshold); !expected.empty())
-        r.error(n, "restructure.threshold", expected);
-    }
-  }
-  if (root["normal_cones"]) c.normal_cones = r.boolean(root["normal_cones"], "normal_cones");
-  if (const YAML::Node n = root["narrow"]) {
-    r.check_keys(n, "narrow", {"mode", "representative", "rules"});
-    if (const YAML::Node m = n["mode"]) c.narrow.mode = named(m, "narrow.mode", kNarrowModes);
-    if (const YAML::Node m = n["representative"]) c.narrow.representative = named(m, "narrow.representative", kRepresentativeRules);
-    if (const YAML::Node rules = n["rules"]) {
-      r.check_keys(rules, "narrow.rules", {"triangles", "sixteenths", "proximity", "orphan_carry", "certificates"});
-      for (const auto& [key, choice] : stage_rule_settings(c.narrow.rules))
-        if (const YAML::Node m = rules[key]) *choice = named(m, "narrow.rules." + std::string(key), kPassChoices);
-    }
-  }
-  if (const YAML::Node n = root["threads"])
-    c.threads = checked(n, "threads", r.integer(n, "threads", -1e18, 1e18), setting_check::threads);
-  const auto limit = [&](const char* key, double& value, std::string (*check)(double)) {
-    if (const YAML::Node n = root[key]) {
-      value = r.real(n, key, -1e300, 1e300);
-      if (const std::string expected = check(value); !expected.empty()) r.error(n, key, expected);
-    }
-  };
-  limit("candidate_limit", c.candidate_limit, setting_check::candidate_limit);
-  limit("time_limit", c.time_limit, setting_check::time_limit);
-  if (root["memory_limit"]) c.memory_limit = r.string(root["memory_limit"], "memory_limit");
-  try {
-    c.memory_limit_bytes = parse_memory_size(c.memory_limit, "memory_limit");
-  } catch (const Error&) {
-    if (!root["memory_limit"]) throw;
-    r.error(root["memory_limit"], "memory_limit", "a size like 8GiB, 512MiB or 60% (of this machine's memory), or none");
-  }
-}
-
-nlohmann::json end_boxes_json(EndBoxMode mode) {
-  if (mode == EndBoxMode::automatic) return std::string(to_string(mode));
-  return mode == EndBoxMode::on;
-}
-
-nlohmann::json to_json(const PipelineConfig& c) {
-  nlohmann::json j;
-  j["bv"] = {{"k", c.k}, {"width", c.width}, {"end_boxes", end_boxes_json(c.end_boxes)}};
-  j["hierarchy"] = params_json(c.hierarchy);
-  j["restructure"] = {{"threshold", c.restructure_threshold}};
-  j["normal_cones"] = c.normal_cones;
-  nlohmann::json rules = nlohmann::json::object();
-  for (const auto& [key, choice] : stage_rule_settings(const_cast<StageRuleChoices&>(c.narrow.rules))) rules[key] = to_string(*choice);
-  j["narrow"] = {{"mode", to_string(c.narrow.mode)}, {"representative", to_string(c.narrow.representative)}, {"rules", rules}};
-  j["scheduler"] = params_json(c.scheduler);
-  j["threads"] = c.threads;
-  j["memory_limit"] = c.memory_limit;
-  j["memory_limit_bytes"] = c.memory_limit_bytes;
-  j["candidate_limit"] = c.candidate_limit;
-  j["time_limit"] = c.time_limit;
-  j["tester"] = params_json(c.tester);
-  return j;
-}
 
 nlohmann::json to_json(const ExperimentConfig& c) {
   nlohmann::json j;
@@ -324,7 +231,7 @@ nlohmann::json to_json(const ExperimentConfig& c) {
     }
   }
   if (c.replay.step >= 0) j["replay"] = {{"step", c.replay.step}, {"frames", c.replay.frames}};
-  j.update(to_json(static_cast<const PipelineConfig&>(c)));
+  j.update(settings_json(c));
   j["output"] = {{"dir", c.output.dir}, {"csv", c.output.csv}, {"jsonl", c.output.jsonl}, {"contacts", c.output.contacts}};
   return j;
 }

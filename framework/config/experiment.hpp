@@ -1,9 +1,7 @@
 #pragma once
 // The experiment config: YAML → typed structs, in this one place. Every key is validated; an unknown key or
-// a bad value is an Error "file:line: key: expected …, got …". Top-level keys:
-//   name, scene, bv {k}, hierarchy, restructure {threshold}, normal_cones, scheduler, threads, tester,
-//   narrow {mode, representative}, memory_limit, replay {step, frames},
-//   output {dir, csv, jsonl, contacts}
+// a bad value is an Error "file:line: key: expected …, got …". Top-level keys: name, scene, replay {step, frames},
+// output {dir, csv, jsonl, contacts}, and the pipeline's settings (framework/config/settings.def).
 // Strategies (hierarchy, scheduler, tester, built-in scenes) are a name or a map {name: …, param: …},
 // validated against the registries (see docs/config.md).
 #include <memory>
@@ -23,15 +21,6 @@
 
 namespace ccdlab {
 
-using SceneRegistry = Registry<MeshSequence>;
-
-/// The registries a config is validated against (strategies/registry.hpp provides the built-in ones).
-struct Registries {
-  const BuilderRegistry& builders;
-  const SchedulerRegistry& schedulers;
-  const TesterRegistry& testers;
-  const SceneRegistry& scenes;
-};
 
 struct SceneConfig {
   bool builtin = true;
@@ -70,18 +59,10 @@ ExperimentConfig load_experiment(const std::string& path, const std::vector<std:
 
 /// The fully resolved config (every default filled in) as JSON: what result files record.
 nlohmann::json to_json(const ExperimentConfig& config);
-/// The pipeline's part of it (bv, hierarchy, restructure, normal_cones, narrow, scheduler, threads, memory_limit, tester).
-nlohmann::json to_json(const PipelineConfig& config);
-/// bv.end_boxes as YAML reads it back: true, false or "auto".
-nlohmann::json end_boxes_json(EndBoxMode mode);
 /// JSON → YAML text (for config.yaml beside the results).
 std::string to_yaml(const nlohmann::json& j);
 
 MeshSequence make_scene(const ExperimentConfig& config, const Registries& registries);
 PipelineStrategies make_strategies(const PipelineConfig& config, const Registries& registries, const SettingName& name = {});
-/// The strategy section of a config — bv, hierarchy, restructure, normal_cones, scheduler, threads, tester,
-/// narrow, memory_limit — from the map `root` into `c` (the keys present; the others keep their values). The
-/// caller checks which keys may appear. Errors are located by `r`.
-void read_strategy_section(const YamlReader& r, const YAML::Node& root, const Registries& registries, PipelineConfig& c);
 
 }  // namespace ccdlab

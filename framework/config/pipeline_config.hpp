@@ -12,6 +12,7 @@
 #include "framework/pipeline/ccd_pipeline.hpp"
 #include "framework/pipeline/pipeline_settings.hpp"
 #include "framework/primitive/tester.hpp"
+#include "framework/scene/mesh_sequence.hpp"
 #include "framework/traversal/scheduler.hpp"
 
 namespace ccdlab {
@@ -19,13 +20,21 @@ namespace ccdlab {
 using BuilderRegistry = Registry<std::unique_ptr<HierarchyBuilder>>;
 using SchedulerRegistry = Registry<std::unique_ptr<TraversalScheduler>>;
 using TesterRegistry = Registry<std::unique_ptr<PrimitiveTester>>;
+using SceneRegistry = Registry<MeshSequence>;
+
+/// The registries a config is validated against (strategies/registry.hpp provides the built-in ones).
+struct Registries {
+  const BuilderRegistry& builders;
+  const SchedulerRegistry& schedulers;
+  const TesterRegistry& testers;
+  const SceneRegistry& scenes;
+};
 
 struct PipelineConfig : PipelineSettings {
   StrategyChoice hierarchy{kDefaultHierarchy, {}};
   StrategyChoice scheduler{kDefaultScheduler, {}};
   StrategyChoice tester{kDefaultTester, {}};
-  /// memory_limit: resident memory a step may use ("8GiB", "60%", "none"), resolved into memory_limit_bytes on
-  /// this machine (parse_memory_size); above the predicted need the step streams its candidates.
+  /// memory_limit's text ("8GiB", "60%", "none"), resolved into memory_limit_bytes on this machine.
   std::string memory_limit = kDefaultMemoryLimit;
 };
 

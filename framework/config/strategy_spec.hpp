@@ -7,6 +7,7 @@
 #include <utility>
 #include <variant>
 
+#include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
 #include "framework/config/yaml_reader.hpp"
@@ -55,6 +56,17 @@ inline std::string strategy_spec_text(const StrategyChoice& c) {
     sep = ',';
   }
   return spec;
+}
+
+/// A choice as the resolved config writes it: {name: …, every parameter: value}.
+inline nlohmann::json params_json(const StrategyChoice& c) {
+  nlohmann::json j;
+  j["name"] = c.name;
+  for (const auto& [key, v] : c.params.all()) {
+    const std::string& k = key;  // a structured binding cannot be captured by clang 14
+    std::visit([&](const auto& x) { j[k] = x; }, v);
+  }
+  return j;
 }
 
 template <class Product>

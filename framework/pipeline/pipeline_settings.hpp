@@ -1,9 +1,11 @@
 #pragma once
-// A pipeline's settings as plain values: every default written once, every value checked once (validate),
-// whoever fills them in — the experiment config (framework/config/pipeline_config.hpp: YAML and --set),
-// `ccdlab step`'s flags, the C++ API's Options, the Python module's keywords and the simulator's ccd_contact
-// effect. The strategies themselves (builder, scheduler, tester) are chosen by name at those entry points and
-// made from their registries, whose parameter defaults are the strategies' own Params.
+// A pipeline's settings as plain values, each with its default (the pipeline's own Params) and its check
+// (setting_check, validate). What a user may set, under which key, flag and keyword, is described once, in the
+// settings table (framework/config/settings.def); every entry point — YAML and --set, the CLI's flags, the C++
+// API's Options, the Python module's keywords — fills these in through it. The strategies themselves (builder,
+// scheduler, tester) are chosen by name and made from their registries, whose parameter defaults are the
+// strategies' own Params.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -13,7 +15,9 @@
 #include "framework/geometry/kdop.hpp"
 #include "framework/hierarchy/wide_bvh.hpp"
 #include "framework/narrow/narrow_phase.hpp"
+#include "framework/util/error.hpp"
 #include "framework/util/named_values.hpp"
+#include "framework/util/parallel.hpp"
 
 namespace ccdlab {
 
@@ -34,9 +38,6 @@ inline constexpr const char* kDefaultHierarchy = "median";
 inline constexpr const char* kDefaultScheduler = "sequential";
 inline constexpr const char* kDefaultTester = "float";
 inline constexpr const char* kDefaultMemoryLimit = "80%";
-/// candidate_limit's default: 40× the densest real step we know (~26 candidate triangle pairs per triangle, a
-/// tangled 92K-triangle cloth), far below the thousands per triangle of a thickness in the wrong unit.
-inline constexpr double kDefaultCandidateLimit = 1000;
 
 /// How an entry point spells a setting in its messages, given its config key ("bv.k"): YAML writes the key, the
 /// CLI its flag ("--k"), the C++ API its member ("Options::k"). Empty: the key.
@@ -65,7 +66,9 @@ struct PipelineSettings {
   std::size_t stream_slices = 0;
   /// candidate_limit: a step estimated (framework/pipeline/work_estimate.hpp) to find more candidate triangle
   /// pairs per triangle than this is refused before its traversal, with the numbers that explain it. 0 = no limit.
-  double candidate_limit = kDefaultCandidateLimit;
+  /// The default: 40× the densest real step we know (~26 candidate triangle pairs per triangle, a tangled
+  /// 92K-triangle cloth), far below the thousands per triangle of a thickness in the wrong unit.
+  double candidate_limit = 1000;
   /// time_limit: seconds a step may run (framework/pipeline/step_watch.hpp); past them its workers stop taking
   /// work and the step throws Error with what it had done. 0 = no limit.
   double time_limit = 0;
@@ -77,16 +80,43 @@ struct PipelineSettings {
 };
 
 /// What is wrong with one setting's value, as the "expected …" text of a message; empty when it is valid.
-/// PipelineSettings::validate and the YAML reader (which adds the line) both ask these: each valid set is
-/// written here only.
+/// PipelineSettings::validate and the settings table (framework/config/settings.def, whose readers add the
+/// line or the flag) both ask these: each valid set is written here only.
 namespace setting_check {
-[[nodiscard]] std::string k(long long k);
-[[nodiscard]] std::string width(long long w);
-[[nodiscard]] std::string threads(long long t);
-[[nodiscard]] std::string split_threads(long long t);
-[[nodiscard]] std::string restructure_threshold(double t);
-[[nodiscard]] std::string candidate_limit(double c);
-[[nodiscard]] std::string time_limit(double seconds);
+[[nodiscard]] inline std::string k(long long k) {
+  return is_kdop_k(int(k)) && k == int(k) ? "" : fmt::format("one of {}", kKdopKs);
+}
+[[nodiscard]] inline std::string width(long long w) { return is_bvh_width(int(w)) && w == int(w) ? "" : kBvhWidths; }
+[[nodiscard]] inline std::string threads(long long t) {
+  return t >= 1 && t <= kMaxThreads ? "" : fmt::format("an integer from 1 to {}", kMaxThreads);
+}
+[[nodiscard]] inline std::string split_threads(long long t) {
+  return t >= 0 && t <= kMaxThreads ? "" : fmt::format("0 (= threads) or an integer up to {}", kMaxThreads);
+}
+[[nodiscard]] inline std::string restructure_threshold(double t) {
+  return t == 0 || (t >= 1 && std::isfinite(t)) ? "" : "0 (off) or a finite number >= 1";
+}
+[[nodiscard]] inline std::string candidate_limit(double c) {
+  return c >= 0 && std::isfinite(c) ? "" : "0 (no limit) or a finite number > 0";
+}
+[[nodiscard]] inline std::string time_limit(double s) {
+  return s >= 0 && std::isfinite(s) ? "" : "0 (no limit) or a finite number of seconds > 0";
+}
+/// A setting every value of its type is right for (a boolean).
+[[nodiscard]] inline std::string any(bool) { return ""; }
 }  // namespace setting_check
+
+inline void PipelineSettings::validate(const SettingName& name) const {
+  const auto check = [&](std::string_view key, const std::string& expected, const auto& value) {
+    if (!expected.empty()) fail("{}: expected {}, got {}", name ? name(key) : std::string(key), expected, value);
+  };
+  check("bv.k", setting_check::k(k), k);
+  check("bv.width", setting_check::width(width), width);
+  check("threads", setting_check::threads(threads), threads);
+  check("split_threads", setting_check::split_threads(split_threads), split_threads);
+  check("restructure.threshold", setting_check::restructure_threshold(restructure_threshold), restructure_threshold);
+  check("candidate_limit", setting_check::candidate_limit(candidate_limit), candidate_limit);
+  check("time_limit", setting_check::time_limit(time_limit), time_limit);
+}
 
 }  // namespace ccdlab

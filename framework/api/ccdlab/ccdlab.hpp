@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -38,33 +39,22 @@ struct MeshFile {
 /// the line (text) or element (binary) on any malformed input.
 MeshFile read_mesh(const std::filesystem::path& path);
 
-/// How a Detector works: the keys of an experiment's strategy section (docs/config.md), each a plain field. The
-/// defaults are the pipeline's own (framework/pipeline/pipeline_settings.hpp), spelled here with the standard
-/// library only; a test holds the two equal.
-/// Strategy fields take a name or "name:key=value,…" (e.g. "conservative:delta=1e-9"); they are checked against
-/// the registries when a Detector is made, with the same messages as a YAML file.
+/// How a Detector works: one member per row of the settings table (ccdlab/settings.def — its key, CLI flag and
+/// one-line doc there; docs/config.md's table lists them with their defaults). A member left empty keeps the
+/// pipeline's default; a set one is checked when a Detector is made, with the messages a YAML file gets
+/// ("Options::k: expected one of 6, 14, 18, 26, got 7"). Strategy members take a name or "name:key=value,…"
+/// (e.g. tester = "conservative:delta=1e-9"); choice members a name (end_boxes = "off").
+///
+///   ccdlab::Options o;
+///   o.scheduler = "phc", o.threads = 4;
 struct Options {
-  int k = 18;                            ///< bv.k: the k-DOP, 6 / 14 / 18 / 26
-  int width = 4;                         ///< bv.width: 2 (binary BVTT) or 4 (wide, SIMD)
-  std::string end_boxes = "auto";        ///< bv.end_boxes: also drop node pairs apart on x, y or z at both ends: on, off, or auto (where they pay)
-  std::string hierarchy = "median";      ///< the BVH builder
-  std::string scheduler = "sequential";  ///< sequential, phc, front, static (or embree)
-  int threads = 1;
-  std::string tester = "float";          ///< float, filtered, conservative, exact
-  std::string narrow = "batched";        ///< narrow.mode: batched or scalar
-  std::string representative = "fixed";  ///< narrow.representative: fixed or first_free
-  bool normal_cones = false;
-  std::string memory_limit = "80%";      ///< "8GiB", "60%" (of this machine) or "none"
-  /// A step estimated to find more candidate triangle pairs per triangle than this is refused (throws ccdlab::Error
-  /// naming the numbers: a thickness in the wrong unit, frames of different scales); 0 = no limit.
-  double candidate_limit = 1000;
-  /// Seconds a step may run; past them it stops and throws ccdlab::Error saying how far it got. 0 = no limit.
-  double time_limit = 0;
+#define CCDLAB_SETTING(kind, member, type, ...) std::optional<type> member;
+#include "ccdlab/settings.def"
+#undef CCDLAB_SETTING
 
-  /// Options from YAML text with the keys of an experiment's strategy section — bv {k, width, end_boxes}, hierarchy,
-  /// scheduler, threads, tester, narrow {mode, representative}, normal_cones, memory_limit, candidate_limit,
-  /// time_limit — and no others.
-  /// `source` names the text in errors ("<source>:line: key: expected …, got …").
+  /// Options from YAML text with the keys of an experiment's settings (bv {k, width, end_boxes}, hierarchy,
+  /// scheduler, threads, tester, narrow {…}, memory_limit, …) and no others; every member is then set, the
+  /// defaults filled in. `source` names the text in errors ("<source>:line: key: expected …, got …").
   static Options from_yaml(std::string_view yaml, std::string_view source = "ccdlab::Options::from_yaml");
 };
 

@@ -59,7 +59,7 @@ TEST(WorkEstimate, IsEveryPairWhenEachSweptVolumeHoldsTheScene) {
 
 TEST(WorkEstimate, IsNearTheTraversalsCountOnAnOrdinaryStep) {
   const Sheet s(32);
-  CcdPipeline p(s.mesh, single_cloth_body(s.mesh), strategies(0.0, kDefaultCandidateLimit));
+  CcdPipeline p(s.mesh, single_cloth_body(s.mesh), strategies(0.0, PipelineSettings{}.candidate_limit));
   const StepResult r = p.step(s.x0, s.x1);
   const WorkEstimate e = estimate_candidates(p.passes(), s.mesh.num_faces());
   // The estimate counts the adjacent pairs too (up to 6 per face more), which the traversal leaves out.
