@@ -12,7 +12,7 @@
 #include <sstream>
 #include <string>
 
-#include "framework/narrow/plane_filter.hpp"
+#include "framework/util/simd_target.hpp"
 #include "framework/pipeline/brute_force.hpp"
 #include "framework/traversal/bvtt.hpp"
 #include "framework/scene/mesh_sequence.hpp"

@@ -1,15 +1,17 @@
 // `ccdlab proximity MESH --dhat D [--relative] [--k K] [--scheduler S] [--threads N] … [--repeat N] [--check]
 //  [--pairs OUT.csv] [--json]`: every vertex–face and edge–edge pair of one mesh file (one self-colliding body)
-// closer than d̂, with its distance and closest-feature type (framework/pipeline/proximity_query.hpp).
+// closer than d̂, with its distance and closest-feature type (framework/pipeline/proximity/proximity_query.hpp).
 #include <chrono>
 #include <map>
 
 #include "experiments/cli/commands.hpp"
+#include "framework/util/simd_target.hpp"
 #include "experiments/cli/report.hpp"
 #include "experiments/cli/step_progress.hpp"
 #include "framework/mesh/mesh_io.hpp"
 #include "framework/pipeline/brute_force.hpp"
-#include "framework/pipeline/proximity_query.hpp"
+#include "framework/pipeline/proximity/proximity_query.hpp"
+#include "framework/pipeline/proximity/sweep_proximity.hpp"
 #include "framework/pipeline/work_estimate.hpp"
 #include "framework/util/error.hpp"
 #include "framework/util/files.hpp"
@@ -88,7 +90,7 @@ int proximity_command(const ProximityOptions& o) {
     j["config"] = settings_json(c);
     j["config"].erase("tester");  // the query tests distances, not motion
     j["config"]["repeat"] = o.repeat;
-    j["config"]["simd_target"] = plane_filter_target();
+    j["config"]["simd_target"] = simd_target_name();
     fmt::print("{}\n", j.dump(2));
     return rc;
   }

@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include "experiments/cli/commands.hpp"
+#include "framework/util/simd_target.hpp"
 #include "experiments/cli/step_progress.hpp"
 #include "framework/config/pipeline_config.hpp"
 #include "framework/config/strategy_spec.hpp"
@@ -81,13 +82,13 @@ int step_command(const StepOptions& o) {
                                        pipeline.end_boxes_kept())) / (1 << 20);
     j["config"] = settings_json(c);
     j["config"]["end_boxes_tested"] = pipeline.end_boxes_in_last_step();
-    j["config"]["simd_target"] = plane_filter_target();
+    j["config"]["simd_target"] = simd_target_name();
     fmt::print("{}\n", j.dump(2));
   } else {
     fmt::print("ccdlab step {} -> {}: {} triangles, k={} width={} hierarchy={} scheduler={} tester={} narrow={}/{} ({})\n\n",
                o.mesh_t0, o.mesh_t1, mesh.num_faces(), c.k, c.width, strategy_spec_text(c.hierarchy),
                strategy_spec_text(c.scheduler), strategy_spec_text(c.tester), to_string(c.narrow.mode),
-               to_string(c.narrow.representative), plane_filter_target());
+               to_string(c.narrow.representative), simd_target_name());
     print_table_header(stdout);
     print_table_row(stdout, "0", r);
     if (o.earliest)

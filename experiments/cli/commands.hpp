@@ -82,7 +82,7 @@ struct StepOptions : PipelineFlags {
 };
 int step_command(const StepOptions& o);
 
-/// `ccdlab proximity`: the pairs closer than dhat in one mesh file (framework/pipeline/proximity_query.hpp); the
+/// `ccdlab proximity`: the pairs closer than dhat in one mesh file (framework/pipeline/proximity/proximity_query.hpp); the
 /// pipeline's flags less --tester.
 struct ProximityOptions : PipelineFlags {
   std::string mesh;

@@ -10,8 +10,8 @@
 #include <string_view>
 
 #include "ccdlab/build_info.hpp"
+#include "framework/util/simd_target.hpp"
 #include "experiments/cli/commands.hpp"
-#include "framework/narrow/plane_filter.hpp"
 #include "framework/util/error.hpp"
 #include "strategies/registry.hpp"
 

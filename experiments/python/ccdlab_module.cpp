@@ -33,7 +33,7 @@
 #include "framework/config/strategy_spec.hpp"
 #include "framework/pipeline/bodies.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
-#include "framework/pipeline/proximity_query.hpp"
+#include "framework/pipeline/proximity/proximity_query.hpp"
 #include "framework/queries/evaluate.hpp"
 #include "framework/queries/hard_cases.hpp"
 #include "framework/util/error.hpp"

@@ -16,7 +16,7 @@
 #include "framework/mesh/mesh_io.hpp"
 #include "framework/pipeline/bodies.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
-#include "framework/pipeline/proximity_query.hpp"
+#include "framework/pipeline/proximity/proximity_query.hpp"
 #include "framework/util/error.hpp"
 #include "framework/util/memory.hpp"
 #include "strategies/registry.hpp"

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "framework/narrow/plane_filter.hpp"
-#include "framework/narrow/proximity_filter.hpp"
+#include "framework/narrow/window_distance_filter.hpp"
 #include "framework/primitive/feature_pairs.hpp"
 #include "framework/traversal/candidates.hpp"
 #include "framework/util/uninitialized_vector.hpp"
@@ -37,7 +37,7 @@ struct NarrowScratch {
   PlaneBatch plane;
   std::vector<std::uint8_t> keep;
   std::vector<std::uint16_t> open;  ///< stage 3's open windows per row, for stage 4
-  ProximityItems proximity;         ///< stage 4's (row, window) items
+  WindowDistanceItems proximity;         ///< stage 4's (row, window) items
 };
 
 }  // namespace ccdlab

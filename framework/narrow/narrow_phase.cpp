@@ -6,7 +6,7 @@
 #include <chrono>
 
 #include "framework/narrow/kdop_filter.hpp"
-#include "framework/narrow/proximity_filter.hpp"
+#include "framework/narrow/window_distance_filter.hpp"
 #include "framework/narrow/split_filter.hpp"
 #include "framework/narrow/triangle_filter.hpp"
 
@@ -315,7 +315,7 @@ void NarrowPhase::cull_plane(NarrowScratch& scratch, CullReach reach, NarrowCoun
   // Stage 4 on the rows stage 3 kept, in place (same row numbers): the distance on their open windows, in the
   // steps the rules choose (rules/stage_rules.hpp).
   if (proximity_stage_) {
-    proximity_filter(plane, kept_vf, rows, scratch.open.data(), levels, scratch.keep.data(), scratch.proximity);
+    window_distance_filter(plane, kept_vf, rows, scratch.open.data(), levels, scratch.keep.data(), scratch.proximity);
     c.proximity_tested += split_kept;
     c.proximity_ns += ns_since(t_proximity);
   }

@@ -9,7 +9,7 @@
 //   stage 2  certified plane test, SIMD over the batch (plane_filter.hpp)   batched mode, testers with a reach
 //   stage 3  the plane test and the boxes on halves, then sixteenths of the step (split_filter.hpp)  〃 (the
 //            sixteenths where they pay)
-//   stage 4  the features' distance on the windows stage 3 left open (proximity_filter.hpp)  〃, where it pays
+//   stage 4  the features' distance on the windows stage 3 left open (window_distance_filter.hpp)  〃, where it pays
 //   test     the PrimitiveTester on the survivors; hits become contacts
 //
 // `scalar` mode runs stage 1 and the test pair by pair, as a student would write it; `batched` runs each

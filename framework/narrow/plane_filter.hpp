@@ -87,13 +87,4 @@ void plane_filter(PlaneBatch& batch, CullReach reach, std::uint8_t* keep);
 /// The same test for one pair, plain C++: the reference the SIMD targets are checked against.
 [[nodiscard]] bool plane_filter_keeps(const PlaneBatch& batch, std::size_t i, CullReach reach);
 
-/// Name of the SIMD target plane_filter dispatches to on this machine now (e.g. "AVX2").
-[[nodiscard]] const char* plane_filter_target();
-
-/// Lets every SIMD kernel dispatch only to `name` or a lesser target: "avx512", "avx2", "sse4", "ssse3" or
-/// "scalar" (the environment's CCDLAB_SIMD, read by the command line at start), to measure what each one buys.
-/// Same answers on every target. Throws Error naming the valid values, or when this CPU and build have no
-/// target at or below it.
-void limit_simd_target(std::string_view name);
-
 }  // namespace ccdlab

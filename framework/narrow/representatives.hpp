@@ -12,7 +12,7 @@
 // pair, and the traversal reports each candidate once. None lost: a pair that passes stage 1
 // (feature_bounds.hpp) has overlapping leaves for EVERY incident face pair, so its first non-adjacent one is a
 // candidate; normal-cone culling drops a candidate only inside one skipped patch, where no two non-adjacent
-// features can touch (traversal/normal_cones.hpp).
+// features can touch (hierarchy/normal_cones.hpp).
 //
 // `fixed` with carried orphans (the two combined, in the steps where it pays: NarrowPhase::begin_step): the
 // owned pairs as `fixed`, and each orphan through first_free's face pair instead of the orphan loop; only the

@@ -28,7 +28,7 @@ constexpr int kSplitCoarseLevels = 1;
 
 /// Rows [begin, end) of `plane`, all VF (`vf`) or all EE, filled by plane_filter: keep[i] = 0 for rows proven
 /// apart on every one of the 2^levels windows, untouched otherwise; with `open`, open[i] = the windows not
-/// proven (bit w: window w), what stage 4 (proximity_filter.hpp) looks at. Runs on the best SIMD target of this CPU.
+/// proven (bit w: window w), what stage 4 (window_distance_filter.hpp) looks at. Runs on the best SIMD target of this CPU.
 /// `halves` (sixteenths only, with `open`; may be `open` itself): the open bits the halves pass left for each
 /// row. The sixteenths of a half it proved stay closed (a proof for a window holds on every part of it), and a
 /// vector whose rows each have one open half computes that half's eight windows only (most rows that

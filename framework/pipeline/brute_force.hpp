@@ -25,13 +25,6 @@ FacePairs brute_force_candidates(const TriMesh& mesh, const CollisionRules& rule
 Contacts brute_force_contacts(const TriMesh& mesh, const CollisionRules& rules, const Positions& x_t0,
                                           const Positions& x_t1, const PrimitiveTester& tester, bool box_cull = false);
 
-/// The proximity query's reference (and the baseline its benchmark measures): every non-adjacent VF and EE pair of
-/// interacting bodies whose exact distance at x is below dhat, found without a hierarchy, ownership or culling
-/// stage — a sweep along x of the features' axis-aligned boxes grown by dhat, each pair whose boxes meet decided by
-/// the exact static test (framework/primitive/static_distance.hpp). One thread; sorted like the pipeline's contacts
-/// (toi 0, coords unset), so contact_set_hash compares the two.
-Contacts sweep_proximity(const TriMesh& mesh, const CollisionRules& rules, const Positions& x, double dhat);
-
 /// Swept k-DOP of every face of the mesh over the step (inflated by thickness / 2), on `threads` threads; the
 /// task costs go to `trace` when given. The pipeline writes these volumes into its BVH leaves instead; this
 /// face-indexed array is for references and benchmarks.

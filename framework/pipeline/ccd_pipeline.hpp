@@ -14,7 +14,7 @@
 
 #include "framework/narrow/narrow_phase.hpp"
 #include "framework/pipeline/bodies.hpp"
-#include "framework/pipeline/body_hierarchy.hpp"
+#include "framework/hierarchy/body_hierarchy.hpp"
 #include "framework/pipeline/memory_budget.hpp"
 #include "framework/pipeline/narrow_driver.hpp"
 #include "framework/pipeline/pipeline_settings.hpp"

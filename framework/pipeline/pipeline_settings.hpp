@@ -53,7 +53,7 @@ struct PipelineSettings {
   /// restructure.threshold: rebuild a sub-tree when its quality (Σ sizes of inner nodes ÷ size of its root)
   /// exceeds this × its value at the last (re)build. 0 = off.
   double restructure_threshold = 0;
-  /// normal_cones: continuous normal-cone culling of self tests (framework/traversal/normal_cones.hpp); thickness 0 only.
+  /// normal_cones: continuous normal-cone culling of self tests (framework/hierarchy/normal_cones.hpp); thickness 0 only.
   bool normal_cones = false;
   /// bv.end_boxes: the traversal also drops node pairs apart on x, y or z at both ends of the step. Needs the
   /// tester's reach (PrimitiveTester::cull_reach); off for a tester without one.

@@ -1,5 +1,5 @@
 #pragma once
-// The elementary test of the proximity query (framework/pipeline/proximity_query.hpp): is a vertex–face or an
+// The elementary test of the proximity query (framework/pipeline/proximity/proximity_query.hpp): is a vertex–face or an
 // edge–edge pair closer than d̂ at one set of positions? Decided exactly, and described for the report by its
 // distance and the type of its closest features (what a barrier solver differentiates).
 //

@@ -17,7 +17,7 @@
 namespace ccdlab::bvtt_rule {
 
 /// Does the self node (A, A) open? A is not a leaf and its self test is not skipped this step (`skip_root`:
-/// the normal-cone skips of traversal/normal_cones.hpp, or nullptr when culling is off).
+/// the normal-cone skips of hierarchy/normal_cones.hpp, or nullptr when culling is off).
 [[nodiscard]] constexpr bool self_opens(bool a_is_leaf, const Index* skip_root, Index a) {
   return !a_is_leaf && !(skip_root && skip_root[a] >= 0);
 }

@@ -1,5 +1,5 @@
 // lane_pair_walk (wide_overlap.hpp): Highway compiles this file once per SIMD target and dispatches
-// to the chosen one, which follows CCDLAB_SIMD (limit_simd_target) without asking the CPU again.
+// to the chosen one, which follows CCDLAB_SIMD (limit_simd_target, framework/util/simd_target.hpp) without asking the CPU again.
 #include "framework/traversal/wide_overlap.hpp"
 
 #undef HWY_TARGET_INCLUDE

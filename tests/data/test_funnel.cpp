@@ -16,7 +16,7 @@
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 using test::GroundTruth;
 GroundTruth load_truth(const std::string& root, const TriMesh& mesh) { return test::load_truth(root, "cloth-funnel", "227", mesh); }

@@ -12,13 +12,14 @@
 
 #include "framework/mesh/mesh_io.hpp"
 #include "framework/pipeline/brute_force.hpp"
-#include "framework/pipeline/proximity_query.hpp"
+#include "framework/pipeline/proximity/proximity_query.hpp"
+#include "framework/pipeline/proximity/sweep_proximity.hpp"
 #include "framework/pipeline/work_estimate.hpp"
 #include "strategies/registry.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 struct Frame {
   const char* scene;

@@ -20,7 +20,7 @@
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 CcdHit run(const PrimitiveTester& t, const QuerySet& s, std::size_t i) {
   return s.kind == ContactKind::vf ? t.vertex_face(s.vf[i]) : t.edge_edge(s.ee[i]);

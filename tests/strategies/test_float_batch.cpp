@@ -26,7 +26,7 @@
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 bool same_bits(const CcdHit& a, const CcdHit& b) {
   return a.hit == b.hit && a.route == b.route && std::bit_cast<std::uint64_t>(a.toi) == std::bit_cast<std::uint64_t>(b.toi) &&

@@ -6,7 +6,7 @@
 #include "strategies/testers/float_tester.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 VertexFaceQuery vf(Vec3 v0, Vec3 v1, Vec3 a, Vec3 b, Vec3 c) { return {v0, a, b, c, v1, a, b, c}; }
 

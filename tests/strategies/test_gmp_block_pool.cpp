@@ -15,7 +15,7 @@
 #include "strategies/testers/gmp_block_pool.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 /// 3ⁿ by repeated multiplication, as a decimal string: every step allocates, grows and frees limbs.
 std::string power_of_three(unsigned n) {

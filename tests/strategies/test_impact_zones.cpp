@@ -10,7 +10,7 @@
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 /// Two 4×4 sheets, B 0.05 above A; one cloth body with self-collision (so A–B pairs are tested).
 struct TwoSheets {

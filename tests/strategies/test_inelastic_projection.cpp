@@ -12,7 +12,7 @@
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 /// Body 0, cloth: a strip rising out of the corner, its bottom edge 0.01 from both floor and wall, and a loose
 /// triangle far away. Body 1, obstacle: the floor y = 0 and the wall x = 0, 2×2 grids each.

@@ -16,7 +16,7 @@
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 PipelineStrategies make(const std::string& scheduler, const std::map<std::string, ParamValues::Value>& params,
                         int threads, int k = 18) {
@@ -337,7 +337,7 @@ TEST(FrontScheduler, FrontCoversEveryNonAdjacentLeafPairExactlyOnceAndShrinksWhe
 }  // namespace ccdlab
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 TEST(AdaptiveRestructuring, RebuildsDegradedSubtreesWithoutChangingAnswers) {
   const MeshSequence scene = small_scene();
@@ -382,7 +382,7 @@ TEST(AdaptiveRestructuring, RebuildsDegradedSubtreesWithoutChangingAnswers) {
 }  // namespace ccdlab
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 TEST(EmbreeScheduler, YieldsExactlyTheCandidatesOfSequentialStepAfterStep) {
   // Embree's rtcCollide over boxes, then the leaf k-DOPs: the same candidates as ccdlab's own traversal, on a

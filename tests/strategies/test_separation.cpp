@@ -14,7 +14,7 @@
 #include "strategies/testers/conservative_tester.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 /// A random rotation, scale and translation applied to every point of a query.
 struct Placement {

@@ -3,7 +3,7 @@
 //
 //   stage 0        candidate face pairs proven apart before their gather (triangle_filter.hpp)   A/B
 //   sixteenths     stage 3's second pass (split_filter.hpp)                                     own cost vs tests saved
-//   stage 4        the features' distance on the open windows (proximity_filter.hpp)            own cost vs tests saved
+//   stage 4        the features' distance on the open windows (window_distance_filter.hpp)            own cost vs tests saved
 //   orphan carry   the candidates bring the orphans they carry (representatives.hpp)            A/B
 //   certificates   orphan blocks skipped while their motion leaves them apart (orphan_certificates.hpp)  A/B
 //   end boxes      the traversal drops node pairs apart at both ends of the step (swept/end_boxes.hpp)  A/B

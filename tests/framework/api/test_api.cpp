@@ -11,12 +11,12 @@
 #include "framework/config/settings.hpp"
 #include "framework/config/pipeline_config.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
-#include "framework/pipeline/proximity_query.hpp"
+#include "framework/pipeline/proximity/proximity_query.hpp"
 #include "strategies/registry.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 /// The message of the Error f throws ("" when it throws none).
 template <class F>

@@ -12,7 +12,7 @@
 #include "strategies/registry.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 std::string error_of(const auto& f) {
   try {

@@ -8,7 +8,7 @@
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 /// A 4-leaf balanced BVH in pre-order: 0 → (1 → 2, 3), (4 → 5, 6).
 BvhTopology four_leaves() {

@@ -9,7 +9,7 @@
 #include "framework/geometry/interval.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 struct Q {
   mpq_t v;

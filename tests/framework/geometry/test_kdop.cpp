@@ -8,7 +8,7 @@
 #include "framework/geometry/kdop.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 template <int K>
 void check_axis_table() {

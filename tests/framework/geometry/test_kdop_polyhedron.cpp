@@ -9,7 +9,7 @@
 #include "framework/geometry/kdop_polyhedron.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 template <int K>
 void check_solid(const KDop<K>& bv, const std::vector<Vec3>& points, std::size_t min_faces) {

@@ -8,7 +8,7 @@
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 std::vector<Box3> face_boxes(const MeshData& m) {
   std::vector<Box3> boxes(m.faces.size());

@@ -9,13 +9,13 @@
 #include <random>
 
 #include "framework/hierarchy/wide_bvh.hpp"
-#include "framework/narrow/plane_filter.hpp"
+#include "framework/util/simd_target.hpp"
 #include "framework/traversal/wide_overlap.hpp"
 #include "strategies/builders/median_builder.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 BvhTopology grid_bvh(int n, int m, std::vector<Box3>& boxes, std::vector<Face>* faces_out = nullptr) {
   const MeshData g = test::grid(n, m);

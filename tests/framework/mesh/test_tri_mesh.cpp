@@ -6,7 +6,7 @@
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 TEST(TriMesh, GridTopologyCounts) {
   MeshData g = test::grid(5, 4);

@@ -15,8 +15,9 @@
 #include <string>
 
 #include "framework/narrow/kdop_filter.hpp"
+#include "framework/util/simd_target.hpp"
 #include "framework/narrow/narrow_phase.hpp"
-#include "framework/narrow/proximity_filter.hpp"
+#include "framework/narrow/window_distance_filter.hpp"
 #include "framework/narrow/split_filter.hpp"
 #include "framework/pipeline/brute_force.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
@@ -27,7 +28,7 @@
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 using test::for_each_simd_target;
 
@@ -214,14 +215,14 @@ TEST(ProximityFilter, EverySimdTargetAgreesWithThePlainVersion) {
       std::vector<std::uint8_t> expect(n);
       std::size_t culled = 0;
       for (std::size_t i = 0; i < n; ++i) {
-        expect[i] = keep_in[i] && proximity_filter_keeps(*b, i, i < nvf, open[i], kSplitLevels);
+        expect[i] = keep_in[i] && window_distance_filter_keeps(*b, i, i < nvf, open[i], kSplitLevels);
         culled += keep_in[i] && open[i] && !expect[i];
       }
       EXPECT_GT(culled, n / 50) << "reach " << reach.abs;
       for_each_simd_target([&](const char* target) {
         std::vector<std::uint8_t> keep = keep_in;
-        ProximityItems items;
-        proximity_filter(*b, nvf, n, open.data(), kSplitLevels, keep.data(), items);
+        WindowDistanceItems items;
+        window_distance_filter(*b, nvf, n, open.data(), kSplitLevels, keep.data(), items);
         EXPECT_EQ(keep, expect) << target << " reach " << reach.abs;
       });
     }
@@ -284,7 +285,7 @@ TEST(ProximityFilter, NeverDropsAPairTheFloatTesterReports) {
       const bool hit[2] = {tester.vertex_face(q).hit, tester.edge_edge(r).hit};
       for (int k = 0; k < 2; ++k) {
         const std::uint16_t open = keep[k] ? split_filter_open(b, std::size_t(k), k == 0) : 0;
-        const bool stage4 = open && proximity_filter_keeps(b, std::size_t(k), k == 0, open, kSplitLevels);
+        const bool stage4 = open && window_distance_filter_keeps(b, std::size_t(k), k == 0, open, kSplitLevels);
         hits += hit[k];
         const bool far = speed < 1 && gap >= 0.1;
         far_kept += far && open;
@@ -623,18 +624,18 @@ PipelineStrategies strategies(const char* tester, NarrowOptions narrow, int k, i
 }
 
 TEST(SimdTargets, CcdlabSimdLimitsTheDispatchToTheNamedTargetOrALesserOne) {
-  const std::string best = plane_filter_target();
+  const std::string best = simd_target_name();
   limit_simd_target("scalar");
-  const std::string scalar = plane_filter_target();
+  const std::string scalar = simd_target_name();
   EXPECT_TRUE(scalar == "EMU128" || scalar == "SCALAR") << scalar;
   if (hwy::SupportedTargets() & HWY_AVX2) {
     limit_simd_target("avx2");
-    EXPECT_STREQ(plane_filter_target(), "AVX2");
+    EXPECT_STREQ(simd_target_name(), "AVX2");
   }
   limit_simd_target("avx512");  // the best this CPU has, AVX-512 or not
-  EXPECT_EQ(plane_filter_target(), best);
+  EXPECT_EQ(simd_target_name(), best);
   EXPECT_THROW(limit_simd_target("avx1024"), Error);
-  EXPECT_EQ(plane_filter_target(), best);  // a refused name changes nothing
+  EXPECT_EQ(simd_target_name(), best);  // a refused name changes nothing
   hwy::SetSupportedTargetsForTest(0);
 }
 

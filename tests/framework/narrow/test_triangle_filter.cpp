@@ -18,7 +18,7 @@
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 /// Two random triangles per candidate in a thin slab, moving: many near contacts, many clear separations.
 /// Every 9th pair shares a vertex; every 13th has a degenerate (collinear) face.

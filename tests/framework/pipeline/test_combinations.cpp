@@ -21,7 +21,7 @@
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 struct Combination {
   std::string builder;
@@ -216,7 +216,7 @@ INSTANTIATE_TEST_SUITE_P(AllOptions, Combinations,
 }  // namespace ccdlab
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 // A memory-bounded step streams its candidates slice by slice: the same contacts and BV tests as the whole
 // traversal at once, for every scheduler (the front is rebuilt per slice), on a scene with many contacts.

@@ -7,13 +7,13 @@
 #include <random>
 
 #include "framework/pipeline/brute_force.hpp"
-#include "framework/narrow/plane_filter.hpp"
+#include "framework/util/simd_target.hpp"
 #include "framework/pipeline/ccd_pipeline.hpp"
 #include "strategies/registry.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 struct Case {
   int k;

@@ -14,7 +14,7 @@
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 PipelineStrategies strategies(const std::string& tester, const std::string& scheduler, int threads, NarrowMode mode,
                               double thickness = 0) {

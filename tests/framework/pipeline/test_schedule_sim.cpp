@@ -3,7 +3,7 @@
 #include "framework/pipeline/schedule_sim.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 TEST(ScheduleSim, DynamicListScheduling) {
   PhaseTrace t{"p", Distribution::dynamic, 1.0, {4, 1, 1, 1, 1}, {}};

@@ -21,7 +21,7 @@
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 PipelineStrategies strategies(double time_limit, int threads) {
   PipelineStrategies s = contact_strategies(18, threads > 1 ? "phc" : "sequential", threads, 0.0);

@@ -16,7 +16,7 @@
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 PipelineStrategies strategies(double thickness, double candidate_limit) {
   PipelineStrategies s = contact_strategies(18, "sequential", 1, 0.0);

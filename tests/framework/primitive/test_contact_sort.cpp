@@ -15,7 +15,7 @@
 #include "framework/primitive/contact.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 /// `n` contacts with distinct keys, drawn from ids spread over [0, 2³¹) (and the extremes), in random order;
 /// each carries its id pair in its other fields so that a torn move shows.

@@ -13,7 +13,7 @@
 #include "framework/primitive/static_distance.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 using K = CGAL::Simple_cartesian<CGAL::Gmpq>;
 

@@ -10,7 +10,7 @@
 #include "framework/traversal/wide_overlap.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 FramePoints point(const Vec3& a, const Vec3& b) {
   FramePoints p{};

@@ -6,7 +6,7 @@
 #include "framework/traversal/candidates.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 FacePairs numbered(std::size_t n, Index tag) {
   FacePairs l;

@@ -9,7 +9,7 @@
 #include "framework/util/parallel.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 TEST(Executor, EveryTaskRunsOnceUnderBothDistributions) {
   for (Distribution dist : {Distribution::dynamic, Distribution::static_chunks})

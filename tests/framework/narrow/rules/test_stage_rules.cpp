@@ -4,7 +4,7 @@
 #include "framework/narrow/rules/stage_rules.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 constexpr std::uint64_t kPeriod = RuleCalendar::kPeriod;
 

@@ -1,4 +1,4 @@
-// The proximity query (framework/pipeline/proximity_query.hpp) against brute force: every non-adjacent VF and EE
+// The proximity query (framework/pipeline/proximity/proximity_query.hpp) against brute force: every non-adjacent VF and EE
 // pair of the mesh decided by the same exact test (no BVH, no ownership, no culling), and an independent double
 // reference (Ericson's closest points) away from d̂; for every scheduler, thread count, K and BVH width; one hash.
 #include <gtest/gtest.h>
@@ -6,13 +6,13 @@
 #include <random>
 
 #include "framework/pipeline/brute_force.hpp"
-#include "framework/pipeline/proximity_query.hpp"
+#include "framework/pipeline/proximity/proximity_query.hpp"
 #include "strategies/registry.hpp"
 #include "support/error_of.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
-namespace {
+namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
 PipelineStrategies strategies(const std::string& scheduler, int threads, int k, int width) {
   PipelineStrategies s;

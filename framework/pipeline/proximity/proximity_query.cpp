@@ -1,4 +1,4 @@
-#include "framework/pipeline/proximity_query.hpp"
+#include "framework/pipeline/proximity/proximity_query.hpp"
 
 #include <string_view>
 #include <utility>

@@ -1,4 +1,4 @@
-#include "framework/pipeline/body_hierarchy.hpp"
+#include "framework/hierarchy/body_hierarchy.hpp"
 
 #include <chrono>
 

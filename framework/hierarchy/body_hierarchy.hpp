@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "framework/hierarchy/bvh.hpp"
+#include "framework/hierarchy/normal_cones.hpp"
+#include "framework/hierarchy/pass_side.hpp"
 #include "framework/swept/feature_bounds.hpp"
-#include "framework/traversal/normal_cones.hpp"
-#include "framework/traversal/scheduler.hpp"
 
 namespace ccdlab {
 

@@ -1,13 +1,13 @@
 // Highway compiles this file once per SIMD target (foreach_target.h) and picks one at run time. The SIMD kernel
 // and the plain reference below evaluate the same expressions in the same order (-ffp-contract=off); every
 // minimum, maximum and clamp is a compare-and-select, so both treat a NaN alike.
-#include "framework/narrow/proximity_filter.hpp"
+#include "framework/narrow/window_distance_filter.hpp"
 
 #include <bit>
 #include <cmath>
 
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "framework/narrow/proximity_filter.cpp"
+#define HWY_TARGET_INCLUDE "framework/narrow/window_distance_filter.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
@@ -135,7 +135,7 @@ void ProximityItemsT(const double* const* col, const double* reach, const std::i
   }
 }
 
-void ProximityItems(const double* const* col, const double* reach, const std::int64_t* rows, const double* times,
+void WindowDistanceItems(const double* const* col, const double* reach, const std::int64_t* rows, const double* times,
                     std::size_t n, double half_width, bool vf, std::uint8_t* proven) {
   if (vf) ProximityItemsT<true>(col, reach, rows, times, n, half_width, proven);
   else ProximityItemsT<false>(col, reach, rows, times, n, half_width, proven);
@@ -148,7 +148,7 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace ccdlab {
 
-HWY_EXPORT(ProximityItems);
+HWY_EXPORT(WindowDistanceItems);
 
 namespace {
 /// At least the widest vector's lanes (AVX-512: 8 doubles), a multiple of every target's: each kind's items are
@@ -156,8 +156,8 @@ namespace {
 constexpr std::size_t kMaxLanes = 16;
 }  // namespace
 
-void proximity_filter(const PlaneBatch& plane, std::size_t vf_rows, std::size_t rows, const std::uint16_t* open,
-                      int levels, std::uint8_t* keep, ProximityItems& items) {
+void window_distance_filter(const PlaneBatch& plane, std::size_t vf_rows, std::size_t rows, const std::uint16_t* open,
+                      int levels, std::uint8_t* keep, WindowDistanceItems& items) {
   // In rounds: each undecided row offers its earliest untested open window. A row is kept at its first window
   // that is not proven (most rows that reach stage 4 are contacts: they stop after a window or two), dropped once
   // every window is proven.
@@ -182,7 +182,7 @@ void proximity_filter(const PlaneBatch& plane, std::size_t vf_rows, std::size_t 
       }
       for (std::size_t j = pending; j < (pending + kMaxLanes - 1) / kMaxLanes * kMaxLanes; ++j)  // padding: a real item
         items.row[j] = items.row[0], items.time[j] = items.time[0];
-      HWY_DYNAMIC_DISPATCH(ProximityItems)(cols, plane.result_column(PlaneBatch::Reach), items.row.data(),
+      HWY_DYNAMIC_DISPATCH(WindowDistanceItems)(cols, plane.result_column(PlaneBatch::Reach), items.row.data(),
                                            items.time.data(), pending, 0.5 / windows, vf, items.proven.data());
       std::size_t still = 0;
       for (std::size_t j = 0; j < pending; ++j) {
@@ -221,7 +221,7 @@ P3 closest_on_segment(const P3& p, const P3& s, const P3& dir) {
 }
 }  // namespace
 
-bool proximity_filter_keeps(const PlaneBatch& plane, std::size_t i, bool vf, std::uint16_t open, int levels) {
+bool window_distance_filter_keeps(const PlaneBatch& plane, std::size_t i, bool vf, std::uint16_t open, int levels) {
   using namespace proximity_detail;
   auto point = [&](int c) { return P3{plane.column(c)[i], plane.column(c + 1)[i], plane.column(c + 2)[i]}; };
   const P3 a0 = point(PlaneBatch::A0x), a1 = point(PlaneBatch::A1x), b0 = point(PlaneBatch::B0x),

@@ -1,4 +1,4 @@
-#include "framework/traversal/normal_cones.hpp"
+#include "framework/hierarchy/normal_cones.hpp"
 
 #include <algorithm>
 #include <cmath>

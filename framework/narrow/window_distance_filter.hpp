@@ -34,7 +34,7 @@ namespace ccdlab {
 
 /// Stage 4's working memory: one item per undecided row and round (its window's middle, whether it was proven,
 /// its open windows not yet tested); reused from batch to batch.
-struct ProximityItems {
+struct WindowDistanceItems {
   UninitializedVector<std::int64_t> row;
   UninitializedVector<double> time;  ///< the window's middle
   UninitializedVector<std::uint8_t> proven;
@@ -45,11 +45,11 @@ struct ProximityItems {
 /// `open[i]` = the windows of 2^levels that stage 3 did not prove (split_filter): for every row whose keep[i] is
 /// set, keep[i] = whether one of its open windows may still hold a contact within the reach. SIMD over the
 /// (row, window) items, on the best target of this CPU.
-void proximity_filter(const PlaneBatch& plane, std::size_t vf_rows, std::size_t rows, const std::uint16_t* open,
-                      int levels, std::uint8_t* keep, ProximityItems& items);
+void window_distance_filter(const PlaneBatch& plane, std::size_t vf_rows, std::size_t rows, const std::uint16_t* open,
+                      int levels, std::uint8_t* keep, WindowDistanceItems& items);
 
 /// The same test for one row, plain C++: the reference the SIMD targets are checked against.
-[[nodiscard]] bool proximity_filter_keeps(const PlaneBatch& plane, std::size_t row, bool vf, std::uint16_t open,
+[[nodiscard]] bool window_distance_filter_keeps(const PlaneBatch& plane, std::size_t row, bool vf, std::uint16_t open,
                                           int levels);
 
 }  // namespace ccdlab
