@@ -45,44 +45,41 @@ nlohmann::json score_json(const SetScore& s) {
           {"toi_late", s.toi_late}};
 }
 
-}  // namespace
-
-int validate_command(const ValidateOptions& o) {
-  if (o.repeat < 1 || o.repeat > 1000000) fail("--repeat: expected an integer from 1 to 1000000, got {}", o.repeat);
-  if (o.failures < 0) fail("--failures: expected an integer >= 0, got {}", o.failures);
-  const Registries reg = builtin_registries();
-  std::vector<StrategyChoice> choices;
-  for (const auto& spec : o.testers) choices.push_back(parse_strategy_spec(spec, "--tester ", "tester", reg.testers, "float"));
+/// The testers of --tester, made from the registry, and their labels (a spec with only the parameters it changes).
+std::pair<std::vector<std::unique_ptr<PrimitiveTester>>, std::vector<std::string>> make_testers(const ValidateOptions& o,
+                                                                                                const Registries& reg) {
   std::vector<std::unique_ptr<PrimitiveTester>> testers;
   std::vector<std::string> names;
-  for (const auto& c : choices) {
+  for (const auto& spec : o.testers) {
+    const StrategyChoice c = parse_strategy_spec(spec, "--tester ", "tester", reg.testers, "float");
     testers.push_back(reg.testers.make(c));
     names.push_back(label(c, reg.testers));
   }
+  return {std::move(testers), std::move(names)};
+}
 
+std::vector<QuerySet> load_sets(const std::vector<std::string>& paths) {
   std::vector<QuerySet> sets;
-  for (const auto& path : o.paths) {
+  for (const auto& path : paths) {
     auto more = path == "hard-cases" ? hard_case_sets() : load_query_sets(path);
     for (auto& s : more) sets.push_back(std::move(s));
   }
+  return sets;
+}
 
+/// Every tester on every set, against the exact reference; each query's outcome written to `per_query` when open.
+std::vector<SetScore> score_sets(const std::vector<QuerySet>& sets, const std::vector<std::unique_ptr<PrimitiveTester>>& testers,
+                                 const std::vector<std::string>& names, int repeat, bool show_progress, OutputFile& per_query) {
   std::vector<SetScore> scores;
-  // Per-query outcomes (for plots of the time distribution), written as they come when --out is given.
-  OutputFile per_query;
-  if (!o.out_dir.empty()) {
-    create_output_dir(o.out_dir, "--out");
-    per_query = OutputFile((fs::path(o.out_dir) / "queries.csv").string(), "--out");
-    per_query << "set,scene,collection,tester,query,origin,truth,hit,route,us,toi,exact_toi\n";
-  }
   std::size_t total = 0;
   for (const auto& s : sets) total += s.size();
-  Progress progress("validate", long(total * (testers.size() + 1)), o.progress);
+  Progress progress("validate", long(total * (testers.size() + 1)), show_progress);
   long done = 0;
   for (const QuerySet& set : sets) {
     const std::vector<ToiReference> reference = exact_reference(set);
     progress.update(done += long(set.size()));
     for (std::size_t t = 0; t < testers.size(); ++t) {
-      const auto outcomes = run_tester(*testers[t], set, o.repeat);
+      const auto outcomes = run_tester(*testers[t], set, repeat);
       scores.push_back(score(set, names[t], outcomes, reference));
       if (per_query.is_open())
         for (std::size_t i = 0; i < outcomes.size(); ++i)
@@ -93,44 +90,44 @@ int validate_command(const ValidateOptions& o) {
       progress.update(done += long(set.size()));
     }
   }
+  return scores;
+}
 
-  int status = 0;
+/// --check: 1 where exact disagrees with the truth, or conservative missed a collision or reported a late time.
+int check_status(const std::vector<SetScore>& scores) {
   for (const SetScore& s : scores) {
     const std::string tester_name = s.tester.substr(0, s.tester.find(':'));
-    if (o.check && tester_name == "exact" && (s.false_negatives || s.false_positives)) status = 1;
-    if (o.check && tester_name == "conservative" && (s.false_negatives || s.toi_late)) status = 1;
+    if (tester_name == "exact" && (s.false_negatives || s.false_positives)) return 1;
+    if (tester_name == "conservative" && (s.false_negatives || s.toi_late)) return 1;
   }
+  return 0;
+}
 
-  if (!o.out_dir.empty()) {
-    OutputFile csv((fs::path(o.out_dir) / "validate.csv").string(), "--out"),
-        jsonl((fs::path(o.out_dir) / "validate.jsonl").string(), "--out");
-    csv << "set,scene,collection,tester,queries,positives,false_negatives,false_positives,filtered,fallbacks,mean_us,"
-           "median_us,p99_us,max_us,toi_max_error,toi_mean_error,toi_late,git_revision\n";
-    for (const SetScore& s : scores)
-      csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.3g},{:.3g},{},{}\n", s.set,
-                         s.scene, s.collection, s.tester,
-                         s.queries, s.positives, s.false_negatives, s.false_positives, s.filtered, s.fallbacks, s.mean_us,
-                         s.median_us, s.p99_us, s.max_us, s.toi_max_error, s.toi_mean_error, s.toi_late,
-                         build_info::git_revision);
-    jsonl << nlohmann::json{{"type", "config"}, {"paths", o.paths}, {"testers", names}, {"repeat", o.repeat},
-                            {"git_revision", build_info::git_revision}}.dump()
-          << "\n";
-    for (const SetScore& s : scores) {
-      auto j = score_json(s);
-      j["type"] = "score";
-      jsonl << j.dump() << "\n";
-    }
-    per_query.commit();
-    csv.commit();
-    jsonl.commit();
+/// validate.csv and validate.jsonl in --out.
+void write_scores(const ValidateOptions& o, const std::vector<std::string>& names, const std::vector<SetScore>& scores) {
+  OutputFile csv((fs::path(o.out_dir) / "validate.csv").string(), "--out"),
+      jsonl((fs::path(o.out_dir) / "validate.jsonl").string(), "--out");
+  csv << "set,scene,collection,tester,queries,positives,false_negatives,false_positives,filtered,fallbacks,mean_us,"
+         "median_us,p99_us,max_us,toi_max_error,toi_mean_error,toi_late,git_revision\n";
+  for (const SetScore& s : scores)
+    csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.3g},{:.3g},{},{}\n", s.set, s.scene,
+                       s.collection, s.tester, s.queries, s.positives, s.false_negatives, s.false_positives, s.filtered,
+                       s.fallbacks, s.mean_us, s.median_us, s.p99_us, s.max_us, s.toi_max_error, s.toi_mean_error,
+                       s.toi_late, build_info::git_revision);
+  jsonl << nlohmann::json{{"type", "config"}, {"paths", o.paths}, {"testers", names}, {"repeat", o.repeat},
+                          {"git_revision", build_info::git_revision}}.dump()
+        << "\n";
+  for (const SetScore& s : scores) {
+    auto j = score_json(s);
+    j["type"] = "score";
+    jsonl << j.dump() << "\n";
   }
+  csv.commit();
+  jsonl.commit();
+}
 
-  if (o.json) {
-    nlohmann::json j = nlohmann::json::array();
-    for (const SetScore& s : scores) j.push_back(score_json(s));
-    fmt::print("{}\n", nlohmann::json{{"scores", j}, {"git_revision", build_info::git_revision}}.dump(2));
-    return status;
-  }
+/// The table: a row per tester and set, then the totals per scene and tester, then what the columns mean.
+void print_scores(const std::vector<SetScore>& scores) {
   std::size_t set_w = 3, tester_w = 6;
   for (const SetScore& s : scores) set_w = std::max(set_w, s.set.size()), tester_w = std::max(tester_w, s.tester.size());
   fmt::print("{:<{}}  {:<{}} {:>7} {:>6} {:>5} {:>5} {:>7} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "set", set_w, "tester",
@@ -166,20 +163,54 @@ int validate_command(const ValidateOptions& o) {
              "queries decided by\nits certified filter / by its fallback; µs per query (each timed --repeat times); ToI "
              "err: largest |toi − exact toi|\nover the queries both call a hit. --out writes validate.csv and "
              "queries.csv (one row per query, with its file:line).\n");
-  if (o.failures > 0) {
-    for (const SetScore& s : scores) {
-      if (s.failures.empty()) continue;
-      const QuerySet* set = nullptr;
-      for (const auto& q : sets)
-        if (q.name == s.set) set = &q;
-      fmt::print("\n{} on {}: {} wrong\n", s.tester, s.set, s.failures.size());
-      for (std::size_t k = 0; k < s.failures.size() && int(k) < o.failures; ++k) {
-        const std::size_t i = s.failures[k];
-        fmt::print("  {} {}\n", set->truth[i] ? "missed   " : "false hit", set->origin[i]);
-      }
+}
+
+/// --failures: up to `n` wrong answers per tester and set, with the query's file and line.
+void print_failures(const std::vector<SetScore>& scores, const std::vector<QuerySet>& sets, int n) {
+  for (const SetScore& s : scores) {
+    if (s.failures.empty()) continue;
+    const QuerySet* set = nullptr;
+    for (const auto& q : sets)
+      if (q.name == s.set) set = &q;
+    fmt::print("\n{} on {}: {} wrong\n", s.tester, s.set, s.failures.size());
+    for (std::size_t k = 0; k < s.failures.size() && int(k) < n; ++k) {
+      const std::size_t i = s.failures[k];
+      fmt::print("  {} {}\n", set->truth[i] ? "missed   " : "false hit", set->origin[i]);
     }
   }
-  if (o.check && status) fmt::print(stderr, "ccdlab validate: check failed (exact disagrees with the ground truth, or conservative missed a collision or reported a late time of contact)\n");
+}
+
+}  // namespace
+
+int validate_command(const ValidateOptions& o) {
+  if (o.repeat < 1 || o.repeat > 1000000) fail("--repeat: expected an integer from 1 to 1000000, got {}", o.repeat);
+  if (o.failures < 0) fail("--failures: expected an integer >= 0, got {}", o.failures);
+  const auto [testers, names] = make_testers(o, builtin_registries());
+  const std::vector<QuerySet> sets = load_sets(o.paths);
+  // Per-query outcomes (for plots of the time distribution), written as they come when --out is given.
+  OutputFile per_query;
+  if (!o.out_dir.empty()) {
+    create_output_dir(o.out_dir, "--out");
+    per_query = OutputFile((fs::path(o.out_dir) / "queries.csv").string(), "--out");
+    per_query << "set,scene,collection,tester,query,origin,truth,hit,route,us,toi,exact_toi\n";
+  }
+  const std::vector<SetScore> scores = score_sets(sets, testers, names, o.repeat, o.progress, per_query);
+  const int status = o.check ? check_status(scores) : 0;
+  if (!o.out_dir.empty()) {
+    write_scores(o, names, scores);
+    per_query.commit();
+  }
+  if (o.json) {
+    nlohmann::json j = nlohmann::json::array();
+    for (const SetScore& s : scores) j.push_back(score_json(s));
+    fmt::print("{}\n", nlohmann::json{{"scores", j}, {"git_revision", build_info::git_revision}}.dump(2));
+    return status;
+  }
+  print_scores(scores);
+  if (o.failures > 0) print_failures(scores, sets, o.failures);
+  if (status)
+    fmt::print(stderr, "ccdlab validate: check failed (exact disagrees with the ground truth, or conservative missed a "
+               "collision or reported a late time of contact)\n");
   return status;
 }
 

@@ -1,4 +1,4 @@
-// The lane-pair walk's body, included by bvtt_wide.hpp once per instruction set inside its namespace
+// The lane-pair walk's body, included by lane_pair_walk_avx512.hpp and lane_pair_walk_avx2.hpp inside its namespace
 // (lane_pair_avx512, lane_pair_avx2), with CCDLAB_WALK_TARGET the set's function attribute and that namespace's
 // visit_lane_pairs in scope. No include guard: one walk per inclusion.
 /// Depth-first traversal over the 4-wide view (call only where lane_pair_walk() allows this instruction set). A pair

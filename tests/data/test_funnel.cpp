@@ -12,6 +12,7 @@
 
 #include "framework/pipeline/ccd_pipeline.hpp"
 #include "strategies/registry.hpp"
+#include "support/registries.hpp"
 #include "support/ground_truth.hpp"
 #include "support/test_meshes.hpp"
 
@@ -36,7 +37,7 @@ TEST(FunnelStep, CandidatesIncludeAllCollidingPairsOfTheGroundTruth) {
   ASSERT_EQ(gt.vf_true.size(), 27u);
   ASSERT_EQ(gt.ee_true.size(), 107u);
 
-  for (int k : {6, 14, 18, 26}) {
+  for (int k : test::kdop_ks()) {
     PipelineStrategies s;
     s.k = k;
     s.builder = builder_registry().make({"median", {}});

@@ -13,6 +13,7 @@
 #include "strategies/registry.hpp"
 #include "strategies/scenes/drape_fold_scene.hpp"
 #include "strategies/schedulers/front_scheduler.hpp"
+#include "support/registries.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
@@ -157,7 +158,7 @@ TEST(Schedulers, EndBoxesGiveEverySchedulerWidthAndThreadCountTheSameCandidates)
     kept += a.size(), all += b.size();
   }
   EXPECT_LT(kept, all) << "the end boxes dropped no candidate: the test proves nothing";
-  for (const char* scheduler : {"sequential", "phc", "static", "front"})
+  for (const std::string& scheduler : test::bvtt_schedulers())
     for (int width : {2, 4})
       for (int threads : {1, 3}) {
         SCOPED_TRACE(std::string(scheduler) + " width " + std::to_string(width) + " x" + std::to_string(threads));
@@ -179,7 +180,7 @@ TEST(Schedulers, AutomaticEndBoxesFindTheCandidatesOfOnOrOffInEveryStepAndSchedu
     PipelineStrategies off = make("sequential", {}, 1), on = make("sequential", {}, 1);
     off.end_boxes = EndBoxMode::off, on.end_boxes = EndBoxMode::on;
     const RunResult without = run(*scene, std::move(off)), with = run(*scene, std::move(on));
-    for (const char* scheduler : {"sequential", "phc", "static", "front"})
+    for (const std::string& scheduler : test::bvtt_schedulers())
       for (int width : {2, 4})
         for (int threads : {1, 3}) {
           SCOPED_TRACE(std::string(scheduler) + " width " + std::to_string(width) + " x" + std::to_string(threads));

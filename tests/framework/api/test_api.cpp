@@ -13,6 +13,7 @@
 #include "framework/pipeline/ccd_pipeline.hpp"
 #include "framework/pipeline/proximity/proximity_query.hpp"
 #include "strategies/registry.hpp"
+#include "support/registries.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
@@ -115,7 +116,7 @@ TEST(Api, DetectorFindsThePipelinesContactsForEveryScheduler) {
   struct {
     std::vector<Positions> frames;
   } seq{frames};
-  for (const char* scheduler : {"sequential", "phc", "front", "static"}) {
+  for (const std::string& scheduler : test::bvtt_schedulers()) {
     Options o;
     o.scheduler = scheduler;
     o.threads = 2;
@@ -175,7 +176,7 @@ TEST(Api, ProximityIsTheQuerysForEveryScheduler) {
   ProximityQuery reference(mesh, single_cloth_body(mesh), contact_strategies(18, "sequential", 1, 0.0), 0.03);
   const ProximityResult want = reference.query(x);
   ASSERT_GT(want.pairs.size(), 20u);
-  for (const char* scheduler : {"sequential", "phc", "front", "static"}) {
+  for (const std::string& scheduler : test::bvtt_schedulers()) {
     Options o;
     o.scheduler = scheduler, o.threads = 2;
     Detector d(faces, o);

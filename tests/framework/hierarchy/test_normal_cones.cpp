@@ -10,6 +10,7 @@
 #include "strategies/registry.hpp"
 #include "strategies/scenes/drape_fold_scene.hpp"
 #include "framework/util/error.hpp"
+#include "support/registries.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
@@ -104,7 +105,7 @@ TEST(NormalCones, FoldingSceneSameContactsForEverySchedulerAndThreadCount) {
   };
   const auto reference = hashes(with_cones("sequential", 1, false));
   std::uint64_t culled = 0;
-  for (const std::string s : {"sequential", "phc", "front", "static"})
+  for (const std::string& s : test::bvtt_schedulers())
     for (int threads : {1, 2, 4}) EXPECT_EQ(hashes(with_cones(s, threads, true), &culled), reference) << s << " x" << threads;
   EXPECT_GT(culled, 0u);
 }

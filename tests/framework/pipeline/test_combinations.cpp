@@ -18,6 +18,7 @@
 #include "framework/pipeline/ccd_pipeline.hpp"
 #include "strategies/registry.hpp"
 #include "strategies/scenes/drape_fold_scene.hpp"
+#include "support/registries.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
@@ -37,11 +38,11 @@ struct Combination {
   }
 };
 
-const std::vector<std::string> kBuilders{"median", "sah"};
-const std::vector<std::string> kSchedulers{"sequential", "phc", "front", "static"};
-const std::vector<int> kKs{6, 14, 18, 26};
+const std::vector<std::string> kBuilders = test::builders();
+const std::vector<std::string> kSchedulers = test::bvtt_schedulers();
+const std::vector<int> kKs = test::kdop_ks();
 
-/// All 128 combinations of builder × restructure × cones × scheduler × K; threads cycle through 1, 2, 3 and
+/// Every combination of builder × restructure × cones × scheduler × K (128 today: the registries and KdopKs); threads cycle through 1, 2, 3 and
 /// the BVH width alternates so that every scheduler × K meets both widths (once with cones, once without).
 std::vector<Combination> all_combinations() {
   std::vector<Combination> out;
@@ -56,7 +57,7 @@ std::vector<Combination> all_combinations() {
   return out;
 }
 
-/// 16 combinations: every scheduler × K, with builder, restructuring, cones and threads cycling so that each
+/// Every scheduler × K (16 today), with builder, restructuring, cones and threads cycling so that each
 /// of their values meets each scheduler and each K.
 std::vector<Combination> scheduler_k_cover() {
   std::vector<Combination> out;

@@ -8,6 +8,7 @@
 #include "framework/pipeline/brute_force.hpp"
 #include "framework/pipeline/proximity/proximity_query.hpp"
 #include "strategies/registry.hpp"
+#include "support/registries.hpp"
 #include "support/error_of.hpp"
 #include "support/test_meshes.hpp"
 
@@ -67,7 +68,7 @@ TEST(ProximityQuery, FindsExactlyTheBruteForcePairsForEverySchedule) {
     const Contacts expected = reference(mesh, CollisionRules(mesh, single_cloth_body(mesh)), x, dhat);
     ASSERT_GT(expected.size(), 30u) << "the crumpled sheet must have near pairs, or the test proves nothing";
     std::uint64_t hash = 0;
-    for (const std::string scheduler : {"sequential", "phc", "front", "static"})
+    for (const std::string& scheduler : test::bvtt_schedulers())
       for (const int threads : {1, 2})
         for (const auto& [k, width] : {std::pair{6, 2}, std::pair{18, 4}, std::pair{26, 4}}) {
           const std::string label = fmt::format("dhat {} {} x{} k={} width={}", dhat, scheduler, threads, k, width);
