@@ -4,9 +4,11 @@
 usage: /usr/bin/python3 analysis/plot_accuracy.py RESULTS_DIR
 
 Reads RESULTS_DIR/queries.csv (one row per tester and query, written by `ccdlab validate --out`) and, if present,
-RESULTS_DIR/pipeline.csv (ms per step of the cloth pipeline per tester and round). Writes
-RESULTS_DIR/accuracy_time.png — per group of query sets, each tester's median µs per query (whisker to p99)
-against its false negatives and false positives — and prints markdown tables.
+RESULTS_DIR/pipeline.csv (ms per step of the cloth pipeline per tester and round) and RESULTS_DIR/earliest.csv
+(the earliest time of impact of real steps per tester, against exact's). Writes
+RESULTS_DIR/accuracy_overview.png — the picture to take in at a glance: every tester's median µs per query over
+all sets (whisker to p99) against its false hits, misses marked beside it — and accuracy_time.png, the same per
+group of query sets; prints markdown tables.
 """
 from __future__ import annotations
 
@@ -26,6 +28,7 @@ from ccdlab_results import read_table  # noqa: E402
 
 QUERY_COLUMNS = ["set", "tester", "query", "truth", "hit", "route", "us", "toi", "exact_toi"]
 PIPELINE_COLUMNS = ["round", "tester", "ms_per_step", "contacts_vf", "contacts_ee", "hash"]
+EARLIEST_COLUMNS = ["step", "tester", "earliest_toi", "exact_toi", "ms"]
 ROUTE_FALLBACK = 2
 
 
@@ -102,7 +105,44 @@ def plot(summary: pd.DataFrame, out: Path) -> Path:
     return path
 
 
-def markdown(summary: pd.DataFrame, pipeline: pd.DataFrame | None) -> str:
+def overview(queries: pd.DataFrame, out: Path) -> Path:
+    """One panel: each tester over every query of every set — median µs (whisker to p99) against false hits, the
+    misses written beside the point in red (a tester with misses is not conservative)."""
+    q = queries
+    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    for i, (tester, g) in enumerate(q.groupby("tester", sort=False)):
+        fp = int(((g.truth == 0) & (g.hit == 1)).sum())
+        fn = int(((g.truth == 1) & (g.hit == 0)).sum())
+        med, p99 = g.us.median(), g.us.quantile(0.99)
+        color = f"C{i % 10}"
+        ax.plot([med, p99], [fp + 1, fp + 1], color=color, linewidth=1.2, alpha=0.6)
+        ax.plot(med, fp + 1, "o", color=color, markersize=8, label=tester)
+        ax.annotate(tester + (f"  {fn} misses" if fn else ""), (med, fp + 1), textcoords="offset points",
+                    xytext=(6, 5 if i % 2 else -11), fontsize=8, color="red" if fn else color)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(f"µs per query, median over all {q.groupby('tester', sort=False).size().iloc[0]} queries "
+                  "(whisker to p99)")
+    ax.set_ylabel("false hits + 1 (log)")
+    ax.set_title("What accuracy costs: every tester on every query set (misses in red)", fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    fig.tight_layout()
+    path = out / "accuracy_overview.png"
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def markdown_earliest(earliest: pd.DataFrame) -> list[str]:
+    lines = ["### Earliest time of impact on real steps (`ccdlab step A B --earliest`)", "",
+             "| step | tester | earliest time | exact's | error (exact − tester) | ms |", "|---|---|---:|---:|---:|---:|"]
+    for r in earliest.itertuples():
+        lines.append(f"| {r.step} | {r.tester} | {r.earliest_toi:.12g} | {r.exact_toi:.12g} | "
+                     f"{r.exact_toi - r.earliest_toi:.2g} | {r.ms:.1f} |")
+    return lines + [""]
+
+
+def markdown(summary: pd.DataFrame, pipeline: pd.DataFrame | None, earliest: pd.DataFrame | None = None) -> str:
     lines = []
     for group in dict.fromkeys(summary.group):
         rows = summary[summary.group == group]
@@ -120,6 +160,8 @@ def markdown(summary: pd.DataFrame, pipeline: pd.DataFrame | None) -> str:
             lines.append(f"| {tester} | {g.ms_per_step.median():.1f} | {g.ms_per_step.min():.1f} | "
                          f"{int(g.contacts_vf.iloc[0] + g.contacts_ee.iloc[0])} | {g.hash.iloc[0]} |")
         lines.append("")
+    if earliest is not None and len(earliest):
+        lines += markdown_earliest(earliest)
     return "\n".join(lines)
 
 
@@ -132,13 +174,17 @@ def main(argv: list[str] | None = None) -> int:
         pipeline = None
         if (args.results / "pipeline.csv").is_file():
             pipeline = read_table(args.results / "pipeline.csv", PIPELINE_COLUMNS, "written by accuracy.sh")
+        earliest = None
+        if (args.results / "earliest.csv").is_file():
+            earliest = read_table(args.results / "earliest.csv", EARLIEST_COLUMNS, "written by accuracy.sh")
     except (FileNotFoundError, ValueError) as e:
         print(f"plot_accuracy.py: error: {e}", file=sys.stderr)
         return 2
     summary = summarize(queries)
     path = plot(summary, args.results)
-    print(markdown(summary, pipeline))
-    print(f"wrote {path}", file=sys.stderr)
+    glance = overview(queries, args.results)
+    print(markdown(summary, pipeline, earliest))
+    print(f"wrote {glance} and {path}", file=sys.stderr)
     return 0
 
 

@@ -11,10 +11,12 @@
 #include "strategies/schedulers/embree_scheduler.hpp"
 #include "strategies/schedulers/sequential_scheduler.hpp"
 #include "strategies/schedulers/static_scheduler.hpp"
+#include "strategies/testers/additive_tester.hpp"
 #include "strategies/testers/conservative_tester.hpp"
 #include "strategies/testers/exact_tester.hpp"
 #include "strategies/testers/filtered_tester.hpp"
 #include "strategies/testers/float_tester.hpp"
+#include "strategies/testers/inclusion_tester.hpp"
 
 namespace ccdlab {
 
@@ -77,6 +79,15 @@ const TesterRegistry& tester_registry() {
            }});
     r.add({"filtered", "certified Bernstein non-penetration filter (Tang 2010), then float; zero thickness", {},
            [](const ParamValues&) -> std::unique_ptr<PrimitiveTester> { return std::make_unique<FilteredTester>(); }});
+    r.add({"additive", "additive CCD (Li et al. 2021): distance steps that cannot close the gap, until it falls "
+           "below (1 - eta) of its start; fast, not conservative; reports pairs that approach, the time early",
+           {{"eta", ParamType::real, AdditiveTester::Params{}.eta, "fraction of the gap one step may close (C-IPC's 1 - s)", 1e-6, 1 - 1e-6},
+            {"thickness", ParamType::real, AdditiveTester::Params{}.thickness, "minimum separation xi (scene units)", 0, 1e300},
+            {"max_iterations", ParamType::integer, (long long)AdditiveTester::Params{}.max_iterations, "steps per query before the fallback (a hit)", 1, 1 << 30}},
+           [](const ParamValues& p) -> std::unique_ptr<PrimitiveTester> {
+             return std::make_unique<AdditiveTester>(
+                 AdditiveTester::Params{p.real("eta"), p.real("thickness"), int(p.integer("max_iterations"))});
+           }});
     r.add({"conservative", "certified bisection: never misses; in time with Bernstein bounds, or with thickness eta > 0 "
            "in time and on the features (minimum separation)",
            {{"delta", ParamType::real, ConservativeTester::Params{}.delta, "relative tolerance: undecided once features move < delta*size in a window", 0, 1},
@@ -89,6 +100,15 @@ const TesterRegistry& tester_registry() {
              return std::make_unique<ConservativeTester>(ConservativeTester::Params{
                  p.real("delta"), ConservativeTester::parse_fallback(p.string("fallback")), int(p.integer("max_windows")),
                  p.real("toi_tolerance"), p.real("thickness"), int(p.integer("max_boxes"))});
+           }});
+    r.add({"inclusion", "inclusion-based CCD (Wang et al. 2021): earliest-first (t, u, v) boxes, corner-value "
+           "inclusions with a rounding filter; never misses",
+           {{"delta", ParamType::real, InclusionTester::Params{}.delta, "relative tolerance: accept a box whose image is < delta*size", 0, 1},
+            {"max_boxes", ParamType::integer, (long long)InclusionTester::Params{}.max_boxes, "boxes per query before the fallback (a hit)", 1, 1 << 30},
+            {"min_separation", ParamType::real, InclusionTester::Params{}.min_separation, "ms: contact when every coordinate of the gap is within ms (scene units)", 0, 1e300}},
+           [](const ParamValues& p) -> std::unique_ptr<PrimitiveTester> {
+             return std::make_unique<InclusionTester>(
+                 InclusionTester::Params{p.real("delta"), int(p.integer("max_boxes")), p.real("min_separation")});
            }});
     r.add({"exact", "reference: exact algebraic roots and signs on GMP integers (CGAL); zero thickness",
            {{"prefilter", ParamType::boolean, ExactTester::Params{}.prefilter, "decide certainly separated queries by interval bounds first", 0, 0},

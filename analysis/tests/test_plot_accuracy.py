@@ -18,6 +18,8 @@ def make_results(folder: Path) -> Path:
     (folder / "queries.csv").write_text("\n".join(rows) + "\n")
     (folder / "pipeline.csv").write_text("round,tester,ms_per_step,contacts_vf,contacts_ee,hash\n"
                                          "1,float,50.0,10,20,abc\n2,float,52.0,10,20,abc\n1,exact,190.0,10,20,abc\n")
+    (folder / "earliest.csv").write_text("step,tester,earliest_toi,exact_toi,ms\n"
+                                         "funnel,conservative,0.25,0.2500000001,12.5\nfunnel,exact,0.2500000001,0.2500000001,40\n")
     return folder
 
 
@@ -45,8 +47,10 @@ def test_plot_and_tables_are_written(tmp_path, capsys):
     folder = make_results(tmp_path / "r")
     assert plot_accuracy.main([str(folder)]) == 0
     assert (folder / "accuracy_time.png").stat().st_size > 1000
+    assert (folder / "accuracy_overview.png").stat().st_size > 1000
     out = capsys.readouterr().out
     assert "### handcrafted (Wang et al.)" in out and "| float | 51.0 | 50.0 | 30 | abc |" in out
+    assert "| funnel | conservative | 0.25 | 0.2500000001 | 1e-10 | 12.5 |" in out
 
 
 def test_missing_file_is_a_clear_error(tmp_path, capsys):

@@ -251,11 +251,12 @@ void BM_FloatTesterHitsMisses(benchmark::State& state) {
 BENCHMARK(BM_FloatTesterHitsMisses)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 // The accuracy ladder on random edge–edge queries (mostly separated: the filters' case) and on every built-in
-// hard case (degenerate: the expensive paths). Arg: 0 float, 1 filtered, 2 conservative, 3 exact.
-const char* const kTesters[] = {"float", "filtered", "conservative", "exact"};
-std::unique_ptr<PrimitiveTester> make_tester(int i) {
-  return tester_registry().make({kTesters[i], tester_registry().find(kTesters[i])->defaults()});
+// hard case (degenerate: the expensive paths). Arg: the tester's place in the registry (the ladder's order).
+const std::string& tester_name(std::int64_t i) { return tester_registry().entries().at(std::size_t(i)).name; }
+std::unique_ptr<PrimitiveTester> make_tester(std::int64_t i) {
+  return tester_registry().make({tester_name(i), tester_registry().find(tester_name(i))->defaults()});
 }
+const int kLastTester = int(tester_registry().entries().size()) - 1;
 
 void BM_TesterRandomEdgeEdge(benchmark::State& state) {
   std::mt19937 rng(1);
@@ -267,10 +268,10 @@ void BM_TesterRandomEdgeEdge(benchmark::State& state) {
   const auto t = make_tester(int(state.range(0)));
   std::size_t i = 0, hits = 0;
   for (auto _ : state) hits += t->edge_edge(queries[i++ & 4095]).hit;
-  state.SetLabel(kTesters[state.range(0)]);
+  state.SetLabel(tester_name(state.range(0)));
   state.counters["hit_rate"] = double(hits) / double(state.iterations());
 }
-BENCHMARK(BM_TesterRandomEdgeEdge)->DenseRange(0, 3);
+BENCHMARK(BM_TesterRandomEdgeEdge)->DenseRange(0, kLastTester);
 
 void BM_TesterHardCases(benchmark::State& state) {
   static const std::vector<QuerySet> sets = hard_case_sets();
@@ -282,10 +283,10 @@ void BM_TesterHardCases(benchmark::State& state) {
       for (const auto& q : s.ee) benchmark::DoNotOptimize(t->edge_edge(q));
       queries += s.size();
     }
-  state.SetLabel(kTesters[state.range(0)]);
+  state.SetLabel(tester_name(state.range(0)));
   state.SetItemsProcessed(std::int64_t(queries));
 }
-BENCHMARK(BM_TesterHardCases)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_TesterHardCases)->DenseRange(0, kLastTester)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace ccdlab

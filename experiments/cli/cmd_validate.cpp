@@ -50,7 +50,7 @@ std::pair<std::vector<std::unique_ptr<PrimitiveTester>>, std::vector<std::string
                                                                                                 const Registries& reg) {
   std::vector<std::unique_ptr<PrimitiveTester>> testers;
   std::vector<std::string> names;
-  for (const auto& spec : o.testers) {
+  for (const auto& spec : o.testers.empty() ? reg.testers.names() : o.testers) {
     const StrategyChoice c = parse_strategy_spec(spec, "--tester ", "tester", reg.testers, "float");
     testers.push_back(reg.testers.make(c));
     names.push_back(label(c, reg.testers));
@@ -93,12 +93,13 @@ std::vector<SetScore> score_sets(const std::vector<QuerySet>& sets, const std::v
   return scores;
 }
 
-/// --check: 1 where exact disagrees with the truth, or conservative missed a collision or reported a late time.
+/// --check: 1 where exact disagrees with the truth, or a tester that never misses (conservative, inclusion)
+/// missed a collision or reported a late time.
 int check_status(const std::vector<SetScore>& scores) {
   for (const SetScore& s : scores) {
     const std::string tester_name = s.tester.substr(0, s.tester.find(':'));
     if (tester_name == "exact" && (s.false_negatives || s.false_positives)) return 1;
-    if (tester_name == "conservative" && (s.false_negatives || s.toi_late)) return 1;
+    if ((tester_name == "conservative" || tester_name == "inclusion") && (s.false_negatives || s.toi_late)) return 1;
   }
   return 0;
 }
@@ -209,7 +210,8 @@ int validate_command(const ValidateOptions& o) {
   print_scores(scores);
   if (o.failures > 0) print_failures(scores, sets, o.failures);
   if (status)
-    fmt::print(stderr, "ccdlab validate: check failed (exact disagrees with the ground truth, or conservative missed a "
+    fmt::print(stderr, "ccdlab validate: check failed (exact disagrees with the ground truth, or conservative or "
+               "inclusion missed a "
                "collision or reported a late time of contact)\n");
   return status;
 }

@@ -112,11 +112,11 @@ int bench_command(const BenchOptions& o);
 
 struct ValidateOptions {
   std::vector<std::string> paths;  ///< query CSV files / folders, or "hard-cases"
-  std::vector<std::string> testers = {"float", "filtered", "conservative", "exact"};
+  std::vector<std::string> testers;  ///< specs; none: every registered tester at its defaults (the ladder)
   int repeat = 3;                  ///< time each query this many times, keep the fastest
   std::string out_dir;             ///< write validate.csv / validate.jsonl here
   int failures = 0;                ///< list up to this many wrong answers per tester and set
-  bool check = false;              ///< exit 1 when exact disagrees with the truth or conservative misses
+  bool check = false;              ///< exit 1 when exact disagrees with the truth or a tester that never misses does
   bool json = false;
   bool progress = true;
 };

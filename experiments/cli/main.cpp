@@ -176,12 +176,12 @@ Command add_validate(CLI::App& app) {
   auto& o = owned<ValidateOptions>();
   auto* cmd = app.add_subcommand("validate", "testers against elementary query sets with known answers");
   cmd->add_option("paths", o.paths, "query CSV files or folders (../shared/data/ccd-queries), or hard-cases")->required();
-  cmd->add_option("--tester", o.testers, "tester, e.g. float or conservative:delta=1e-4,fallback=exact (repeatable)")
-      ->capture_default_str();
+  cmd->add_option("--tester", o.testers, "tester, e.g. float or conservative:delta=1e-4,fallback=exact (repeatable; "
+                                         "default: every tester of the ladder, `ccdlab list`)");
   cmd->add_option("--repeat", o.repeat, "time each query this many times, keep the fastest")->capture_default_str();
   cmd->add_option("--out", o.out_dir, "write validate.csv, validate.jsonl and queries.csv (per query) into this folder");
   cmd->add_option("--failures", o.failures, "list up to N wrong answers per tester and set");
-  cmd->add_flag("--check", o.check, "exit 1 if exact disagrees with the truth or conservative misses");
+  cmd->add_flag("--check", o.check, "exit 1 if exact disagrees with the truth, or conservative or inclusion misses");
   cmd->add_flag("--json", o.json, "print JSON instead of the table");
   add_progress_flag(cmd, o);
   return {cmd, [&o] { return validate_command(o); }};

@@ -566,9 +566,9 @@ PYBIND11_MODULE(_ccdlab, m) {
           return run_frames(frames.cast<std::vector<py::object>>(), faces, options, call);
         }, py::arg("frames"), py::arg("faces"),
         "CCD over consecutive frames (a list of N×3 arrays) of one mesh: a list of step dicts (as step()).");
-  m.def("validate", &validate, py::arg("paths"), py::arg("testers") = std::vector<std::string>{"float", "filtered", "conservative", "exact"},
+  m.def("validate", &validate, py::arg("paths"), py::arg("testers") = tester_registry().names(),
         py::arg("repeat") = 1,
-        "Testers (names or 'name:key=value,…') over elementary query sets with known answers — CSV files or folders "
+        "Testers (names or 'name:key=value,…'; default: every tester of the ladder) over elementary query sets with known answers — CSV files or folders "
         "of the shared format, or 'hard-cases' — as `ccdlab validate`: a list of dicts, one per set and tester "
         "(set, scene, collection, tester, queries, positives, false_negatives, false_positives, filtered, "
         "fallbacks, mean/median/p99/max_us, toi_max_error, toi_mean_error, toi_late).");

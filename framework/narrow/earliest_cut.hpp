@@ -10,6 +10,13 @@
 // holding the true earliest time has from ≤ that time ≤ best at every moment, so it is always tested: the answer
 // is the same for every thread count and order. Pairs without windows (a tester without a reach, the
 // scalar mode) have from = 0 and are never skipped.
+//
+// Tight times: a hit whose time is below best is narrowed by the tester (PrimitiveTester::tighten_toi, a later
+// lower bound) before it is offered; one at or above best is offered as it is. The answer is then the minimum
+// over every pair of its narrowed time, whatever the order: a time offered unnarrowed is at or above a time
+// offered before it, so the least one offered is a narrowed one (the first offer of all always is). The same
+// for every thread count; the narrowed time can depend on `from`, so the two narrow modes may differ within the
+// tester's resolution.
 #include <atomic>
 
 namespace ccdlab {

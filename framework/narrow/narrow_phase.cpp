@@ -399,10 +399,20 @@ void NarrowPhase::test_ee(Index a, Index b, Contacts& out, NarrowCounters& c) co
   record_ee({a, b}, tester_.edge_edge(ee_query(a, b)), 0.0, out, c);
 }
 
+template <class Query>
+void NarrowPhase::offer_earliest(const Query& q, CcdHit& hit) const {
+  // Only a hit that can still be the earliest is worth the tester's narrowing (earliest_cut.hpp).
+  if (hit.toi < earliest_->best()) {
+    const double t = tester_.tighten_toi(q, hit.toi);
+    if (t > hit.toi) hit.toi = t, hit.coords = contact_coords(q, t);
+  }
+  earliest_->offer(hit.toi);
+}
+
 void NarrowPhase::record_vf(const VertexFacePair& p, CcdHit hit, double from, Contacts& out, NarrowCounters& c) const {
   if (!counted(hit, c.vf_tests, c.contacts_vf, c)) return;
   if (hit.toi < from) hit.toi = from, hit.coords = contact_coords(vf_query(p.v, p.f), from);
-  if (earliest_) earliest_->offer(hit.toi);
+  if (earliest_) offer_earliest(vf_query(p.v, p.f), hit);
   const Face& t = mesh_.face(p.f);
   out.push_back(Contact{ContactKind::vf, p.v, p.f, {p.v, t[0], t[1], t[2]}, hit.toi, hit.coords});
 }
@@ -410,7 +420,7 @@ void NarrowPhase::record_vf(const VertexFacePair& p, CcdHit hit, double from, Co
 void NarrowPhase::record_ee(const EdgeEdgePair& p, CcdHit hit, double from, Contacts& out, NarrowCounters& c) const {
   if (!counted(hit, c.ee_tests, c.contacts_ee, c)) return;
   if (hit.toi < from) hit.toi = from, hit.coords = contact_coords(ee_query(p.a, p.b), from);
-  if (earliest_) earliest_->offer(hit.toi);
+  if (earliest_) offer_earliest(ee_query(p.a, p.b), hit);
   const Edge &ea = mesh_.edge(p.a), &eb = mesh_.edge(p.b);
   out.push_back(Contact{ContactKind::ee, p.a, p.b, {ea[0], ea[1], eb[0], eb[1]}, hit.toi, hit.coords});
 }

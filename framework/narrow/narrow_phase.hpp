@@ -102,6 +102,10 @@ class NarrowPhase {
   /// Counts a test and adds its contact when it hit, its time raised to `from` (FeatureBatch::from; 0 without
   /// one), and offers that time to the earliest-time cut, if set.
   void record_vf(const VertexFacePair& p, CcdHit hit, double from, Contacts& out, NarrowCounters& c) const;
+  /// The earliest-time query: narrows a hit that can still be the earliest (PrimitiveTester::tighten_toi), then
+  /// offers its time to the cut.
+  template <class Query>
+  void offer_earliest(const Query& q, CcdHit& hit) const;
   void record_ee(const EdgeEdgePair& p, CcdHit hit, double from, Contacts& out, NarrowCounters& c) const;
 
   const TriMesh& mesh_;

@@ -1,6 +1,7 @@
 #pragma once
 // PrimitiveTester: the elementary continuous tests (vertex–face, edge–edge) under linear motion over one
-// step. Implementations form the accuracy ladder (float, filtered, conservative, exact); strategies/testers/.
+// step. Implementations form the accuracy ladder (float, filtered, additive, conservative, inclusion, exact);
+// strategies/testers/.
 #include <cstddef>
 #include <optional>
 #include <span>
@@ -34,6 +35,12 @@ class PrimitiveTester {
   virtual void edge_edges(std::span<const EdgeEdgeQuery> q, CcdHit* out) const {
     for (std::size_t i = 0; i < q.size(); ++i) out[i] = edge_edge(q[i]);
   }
+  /// For the earliest-time query: a lower bound on the time of contact of a pair reported colliding at `toi`
+  /// (a lower bound itself), at least `toi` and as late as the tester can prove — for `conservative` and
+  /// `inclusion` within 1e-9 of the step of the true time where it is certified. Never later than the truth.
+  /// The narrow phase asks it only of hits that can still be the step's earliest (earliest_cut.hpp).
+  [[nodiscard]] virtual double tighten_toi(const VertexFaceQuery&, double toi) const { return toi; }
+  [[nodiscard]] virtual double tighten_toi(const EdgeEdgeQuery&, double toi) const { return toi; }
   /// The farthest two features can stay apart over the whole step and still be reported as a hit: the
   /// promise that lets the batched narrow phase drop pairs proven farther (plane_filter.hpp). None (the
   /// default) when the tester cannot bound it; the plane stage is then skipped for it.

@@ -46,6 +46,11 @@ class ConservativeTester final : public PrimitiveTester {
   /// mode reports; never one that comes within η.
   [[nodiscard]] std::optional<CullReach> cull_reach() const override { return CullReach{params_.thickness, 4 * params_.delta + kReachFloor}; }
 
+  /// Zero thickness: the earliest window of width 2^-32 at or after `toi` where f may vanish (any contact needs
+  /// f = 0, and none is earlier than `toi`). With a thickness: `toi` (the search's own `toi_tolerance`).
+  [[nodiscard]] double tighten_toi(const VertexFaceQuery& q, double toi) const override;
+  [[nodiscard]] double tighten_toi(const EdgeEdgeQuery& q, double toi) const override;
+
   static Fallback parse_fallback(const std::string& name);
 
  private:
@@ -54,6 +59,9 @@ class ConservativeTester final : public PrimitiveTester {
   /// The start of the earliest sub-window of [tl, th], toi_tolerance wide, where f may vanish: a lower bound
   /// on any contact time in [tl, th] (all of them need coplanarity).
   [[nodiscard]] double earliest_root(const interval_ccd::RelativeMotion& m, double tl, double th) const;
+
+  template <class Query>
+  [[nodiscard]] double tighten(const Query& q, double toi) const;
 
   [[nodiscard]] separation::Params separation_params() const;
   /// Whether the features may come within 2δ·L during the step (false: proven farther, they cannot touch).

@@ -8,59 +8,19 @@
 
 #include "framework/geometry/distance.hpp"
 #include "framework/geometry/interval.hpp"
+#include "strategies/testers/gap_boxes.hpp"
 
 namespace ccdlab::separation {
 namespace {
 
-/// The gap at one time as a function of (u, v): F = A + u·P + v·Q + u·v·R (Q = 0 for vertex–face, R = 0 for
-/// edge–edge).
-struct Bilinear {
-  Vec3 A, P, Q, R;
-  [[nodiscard]] Vec3 at(double u, double v) const { return A + u * P + v * Q + (u * v) * R; }
-};
-
-/// The query's four points at t = 0 and t = 1: (v, f0, f1, f2) or (ea0, ea1, eb0, eb1).
-struct Motion {
-  bool edge_edge = false;
-  std::array<Vec3, 4> x0, x1;
-  double M = 0;  ///< the largest |coordinate| of the 8 points: the scale of every rounding error
-  double L = 0;  ///< the bounding-box diagonal of the 8 points: the scale δ is relative to
-
-  static Motion of(const VertexFaceQuery& q) { return make(false, {q.v_t0, q.f0_t0, q.f1_t0, q.f2_t0}, {q.v_t1, q.f0_t1, q.f1_t1, q.f2_t1}); }
-  static Motion of(const EdgeEdgeQuery& q) {
-    return make(true, {q.ea0_t0, q.ea1_t0, q.eb0_t0, q.eb1_t0}, {q.ea0_t1, q.ea1_t1, q.eb0_t1, q.eb1_t1});
-  }
-  static Motion make(bool ee, const std::array<Vec3, 4>& a, const std::array<Vec3, 4>& b) {
-    Motion m{ee, a, b};
-    Box3 box;
-    for (int k = 0; k < 4; ++k) {
-      box.grow(a[k]);
-      box.grow(b[k]);
-      m.M = std::max({m.M, a[k].cwiseAbs().maxCoeff(), b[k].cwiseAbs().maxCoeff()});
-    }
-    m.L = box.extent().norm();
-    return m;
-  }
-
-  /// The gap at time t. Vertex–face: A = v − f0, P = f0 − f1, R = f1 − f2; edge–edge: A = ea0 − eb0,
-  /// P = ea1 − ea0, Q = eb0 − eb1.
-  [[nodiscard]] Bilinear at(double t) const {
-    std::array<Vec3, 4> p;
-    for (int k = 0; k < 4; ++k) p[k] = x0[k] + t * (x1[k] - x0[k]);
-    if (edge_edge) return {p[0] - p[2], p[1] - p[0], p[2] - p[3], Vec3::Zero()};
-    return {p[0] - p[1], p[1] - p[2], Vec3::Zero(), p[2] - p[3]};
-  }
-};
-
-/// A computed value of F is within this of the exact one. With u = 2⁻⁵³: a position x0 + t·(x1 − x0) at an
-/// exact t is within 7.01·u·M of its exact value and below 1.01·M in size; A, P, Q, R are then within 16.1·u·M
-/// and below 2.03·M; the products by u, v, u·v (exact doubles in [0, 1]) and the three sums bring the error to
-/// at most 91.3·u·M < 2⁻⁴⁶·M (fused multiply-adds only drop roundings). Twice that, plus 2⁻¹⁰⁰⁰ for the few
-/// products that may underflow.
-double value_error(double M) { return 0x1p-45 * M + 0x1p-1000; }
-
-/// An interval around a computed value that holds the exact one.
-Interval around(double x, double err) { return {detail::widen_down(x - err), detail::widen_up(x + err)}; }
+using gap::around;
+using gap::Bilinear;
+using gap::Box;
+using gap::corners;
+using gap::excluded_by_axes;
+using gap::kMinWidth;
+using gap::Motion;
+using gap::value_error;
 
 /// |F| ≤ η for certain, F the exact value near the computed f.
 bool certainly_within(const Vec3& f, double err, Interval eta2) {
@@ -70,20 +30,6 @@ bool certainly_within(const Vec3& f, double err, Interval eta2) {
     sq = sq + x * x;
   }
   return sq.hi <= eta2.lo;
-}
-
-/// Every value in the hull of the corner values F is farther than η from the origin, for certain, beyond a
-/// plane at distance η across a coordinate axis.
-bool excluded_by_axes(const std::array<Vec3, 8>& F, double err, double eta) {
-  for (int j = 0; j < 3; ++j) {
-    double lo = F[0][j], hi = F[0][j];
-    for (int i = 1; i < 8; ++i) {
-      lo = std::min(lo, F[i][j]);
-      hi = std::max(hi, F[i][j]);
-    }
-    if (around(lo, err).lo > eta || around(hi, err).hi < -eta) return true;
-  }
-  return false;
 }
 
 /// The same across the direction c: c·F_i > η·|c| at every corner, and a convex combination keeps the bound.
@@ -113,21 +59,6 @@ Vec3 closest_gap(const Motion& m, double t) {
     v = u > 0 ? c.bary[2] / u : 0;
   }
   return m.at(t).at(std::clamp(u, 0.0, 1.0), std::clamp(v, 0.0, 1.0));
-}
-
-struct Box {
-  double t0, t1, u0, u1, v0, v1;
-};
-
-/// Below this a variable is not split further (about 50 of its 53 bits resolved).
-constexpr double kMinWidth = 0x1p-50;
-
-/// F at the 8 corners of a box; corner i: t1 if bit 0, u1 if bit 1, v1 if bit 2.
-std::array<Vec3, 8> corners(const Motion& m, const Box& b) {
-  const Bilinear g0 = m.at(b.t0), g1 = m.at(b.t1);
-  std::array<Vec3, 8> F;
-  for (int i = 0; i < 8; ++i) F[std::size_t(i)] = (i & 1 ? g1 : g0).at(i & 2 ? b.u1 : b.u0, i & 4 ? b.v1 : b.v0);
-  return F;
 }
 
 /// Conservative advancement of a box along the direction c (Mirtich 1996): F is linear in t at each (u, v)
@@ -247,11 +178,7 @@ CcdHit search(const Query& q, const Params& p) {
       push(rest);
       continue;
     }
-    // How far F moves along each variable across the box (∞-norm, the largest of the 4 parallel edges).
-    std::array<double, 3> move{};
-    for (int i = 0; i < 8; ++i)
-      for (int d = 0; d < 3; ++d)
-        if (!(i & (1 << d))) move[std::size_t(d)] = std::max(move[std::size_t(d)], (F[std::size_t(i | (1 << d))] - F[std::size_t(i)]).cwiseAbs().maxCoeff());
+    const std::array<double, 3> move = gap::movement(F);
     if (move[0] + move[1] + move[2] <= resolved) return hit(b.t0, TestRoute::fallback);
     const int d = int(std::max_element(move.begin(), move.end()) - move.begin());
     Box lo = b, hi = b;

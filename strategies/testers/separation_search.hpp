@@ -2,13 +2,9 @@
 // Minimum-separation CCD that never misses: `conservative` at thickness η > 0. Does the pair come within
 // distance η at some t ∈ [0, 1] — and when first, from below?
 //
-// The gap between a point of each feature is a function of time and of where on the features:
-//   vertex–face: F(t, u, v) = v(t) − [f0(t) + u (f1(t) − f0(t)) + u v (f2(t) − f1(t))]
-//   edge–edge:   F(t, u, v) = [ea0(t) + u (ea1(t) − ea0(t))] − [eb0(t) + v (eb1(t) − eb0(t))]
-// over (t, u, v) ∈ [0, 1]³ (for vertex–face the (u, v) square is folded onto the triangle: u = 0 is f0, u = 1
-// the edge f1 f2). The pair is within η exactly where |F| ≤ η. Under linear motion F is linear in each of t,
-// u, v separately, so over a box of (t, u, v) every value is a convex combination of the 8 corner values (the
-// property Tight-Inclusion's inclusion functions rest on; Wang et al. 2021).
+// The gap F(t, u, v) between a point of each feature, linear in each of t, u, v (gap_boxes.hpp): the pair is
+// within η exactly where |F| ≤ η, and over a box of (t, u, v) every value of F is a convex combination of its
+// 8 corner values.
 //
 // Boxes are visited earliest first (a heap on their start time tl). When a box is popped, every point of an
 // earlier time lies in a box already excluded, so tl bounds the earliest contact time from below. A box is

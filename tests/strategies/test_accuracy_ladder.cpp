@@ -1,4 +1,5 @@
-// The accuracy ladder (float, filtered, conservative, exact) on queries with known answers: the built-in hard
+// The accuracy ladder (float, filtered, conservative, exact; additive and inclusion in test_field_testers.cpp) on
+// queries with known answers: the built-in hard
 // cases, random near-degenerate queries checked against `exact`, and the shared benchmark sets (skipped where
 // ../shared/data is absent). `exact` must agree with every known answer, `conservative` must never miss;
 // `float` and `filtered` failures are counted and printed, not asserted.
@@ -17,17 +18,14 @@
 #include "strategies/testers/filtered_tester.hpp"
 #include "strategies/testers/float_tester.hpp"
 #include "strategies/testers/interval_ccd.hpp"
+#include "support/random_queries.hpp"
 #include "support/test_meshes.hpp"
 
 namespace ccdlab {
 namespace CCDLAB_UNITY_ID {  // a namespace of this file's own (tests/CMakeLists.txt)
 
-CcdHit run(const PrimitiveTester& t, const QuerySet& s, std::size_t i) {
-  return s.kind == ContactKind::vf ? t.vertex_face(s.vf[i]) : t.edge_edge(s.ee[i]);
-}
-ExactTester::Decision decide(const ExactTester& t, const QuerySet& s, std::size_t i) {
-  return s.kind == ContactKind::vf ? t.decide(s.vf[i]) : t.decide(s.ee[i]);
-}
+using test::decide;
+using test::run;
 
 TEST(AccuracyLadder, HardCasesCoverEveryFamilyOfTheIssue) {
   std::set<std::string> names;
@@ -136,40 +134,6 @@ TEST(AccuracyLadder, PowerOfTwoScalingChangesNoAnswerOfAnyTester) {
   }
 }
 
-/// Random queries around contact: a vertex (or edge b) aimed at a random point of the face (edge a), landing
-/// at a random time, then nudged by up to `jitter` — many touch, many just miss.
-QuerySet random_near_contacts(ContactKind kind, int n, double jitter, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1), w(0, 1);
-  auto rv = [&] { return Vec3(u(rng), u(rng), u(rng)); };
-  QuerySet s;
-  s.name = "random";
-  s.kind = kind;
-  for (int k = 0; k < n; ++k) {
-    const Vec3 p0 = rv(), p1 = rv(), p2 = rv(), q0 = rv(), q1 = rv(), q2 = rv();
-    const double a = w(rng), b = w(rng) * (1 - a), tc = w(rng);
-    if (kind == ContactKind::vf) {
-      // Where the face is at tc, and a vertex path through that point.
-      const Vec3 hit_at = (p0 + tc * (q0 - p0)) + a * ((p1 + tc * (q1 - p1)) - (p0 + tc * (q0 - p0))) +
-                          b * ((p2 + tc * (q2 - p2)) - (p0 + tc * (q0 - p0)));
-      const Vec3 d = rv();
-      const Vec3 v0 = hit_at - tc * d + jitter * rv(), v1 = hit_at + (1 - tc) * d;
-      s.vf.push_back({v0, p0, p1, p2, v1, q0, q1, q2});
-    } else {
-      const Vec3 on_a = (p0 + tc * (q0 - p0)) + a * ((p1 + tc * (q1 - p1)) - (p0 + tc * (q0 - p0)));
-      const Vec3 d0 = rv(), d1 = rv(), off = rv();
-      const double s_b = w(rng);
-      // Edge b passes through on_a at tc, at parameter s_b along it.
-      const Vec3 b0_tc = on_a - s_b * off, b1_tc = on_a + (1 - s_b) * off;
-      s.ee.push_back({p0, p1, b0_tc - tc * d0 + jitter * rv(), b1_tc - tc * d1, q0, q1, b0_tc + (1 - tc) * d0, b1_tc + (1 - tc) * d1});
-    }
-    s.truth.push_back(0);
-    s.toi.push_back(std::nan(""));
-    s.origin.push_back("random #" + std::to_string(k));
-  }
-  return s;
-}
-
 TEST(AccuracyLadder, ConservativeNeverMissesWhatExactFindsOnRandomNearContacts) {
   const ExactTester exact;
   const ConservativeTester conservative;
@@ -177,7 +141,7 @@ TEST(AccuracyLadder, ConservativeNeverMissesWhatExactFindsOnRandomNearContacts) 
   const FilteredTester filtered;
   for (const ContactKind kind : {ContactKind::vf, ContactKind::ee})
     for (const double jitter : {0.0, 1e-12, 1e-6, 1e-3}) {
-      const QuerySet s = random_near_contacts(kind, 300, jitter, 7 + unsigned(jitter * 1e3));
+      const QuerySet s = test::random_near_contacts(kind, 300, jitter, 7 + unsigned(jitter * 1e3));
       std::size_t hits = 0;
       for (std::size_t i = 0; i < s.size(); ++i) {
         const auto d = decide(exact, s, i);
@@ -240,7 +204,7 @@ TEST(AccuracyLadder, ExactNarrowsAContactWindowWithinWhatClassifyAloneProvesArou
       s.kind == ContactKind::vf ? check(s.vf[i], s.origin[i]) : check(s.ee[i], s.origin[i]);
   };
   for (const ContactKind kind : {ContactKind::vf, ContactKind::ee})
-    check_set(random_near_contacts(kind, 300, 0.0, 19 + unsigned(kind)));
+    check_set(test::random_near_contacts(kind, 300, 0.0, 19 + unsigned(kind)));
   for (const auto& s : hard_case_sets()) check_set(s);
   EXPECT_GT(checked, 400u);
   std::cout << "[exact] contact windows narrowed: " << checked << ", narrower than classify alone: " << narrower
@@ -288,7 +252,7 @@ TEST(AccuracyLadder, ConservativeWithASeparationFindsWhatExactAndFloatFind) {
     const FloatTester flt({eta});
     for (const ContactKind kind : {ContactKind::vf, ContactKind::ee})
       for (const double jitter : {0.0, 1e-6, 1e-3}) {
-        const QuerySet s = random_near_contacts(kind, 150, jitter, 17 + unsigned(jitter * 1e3));
+        const QuerySet s = test::random_near_contacts(kind, 150, jitter, 17 + unsigned(jitter * 1e3));
         for (std::size_t i = 0; i < s.size(); ++i) {
           const auto d = decide(exact, s, i);
           const CcdHit c = run(conservative, s, i), f = run(flt, s, i);

@@ -47,8 +47,9 @@ TEST(NarrowModes, EveryModeRuleTargetAndKReportsTheSameContactsAsBruteForce) {
   MeshData g = test::grid(10, 10);
   TriMesh mesh(Index(g.positions.size()), g.faces);
   std::mt19937 rng(9);
-  // Testers with a cull reach: the culling stages may only drop pairs they would not report.
-  for (const char* tester : {"float", "filtered", "conservative", "conservative+eta"}) {
+  // Testers with a cull reach: the culling stages may only drop pairs they would not report. `additive` and
+  // `inclusion` declare none (their hits are not bounded by a distance): the stages that need one stay off.
+  for (const char* tester : {"float", "filtered", "conservative", "conservative+eta", "additive", "inclusion"}) {
     Positions x0 = test::crumple(g.positions, rng, 0.03), x1 = x0;
     std::uniform_real_distribution<double> u(-1, 1);
     for (Vec3& p : x1) p += 0.1 * Vec3(u(rng), u(rng), u(rng));

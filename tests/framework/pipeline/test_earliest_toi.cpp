@@ -1,5 +1,6 @@
 // The earliest-time query (CcdPipeline::earliest_toi, earliest_cut.hpp): bit for bit the minimum time of the
-// full step's contacts, 1.0 when there are none, for every tester, scheduler, thread count and narrow mode; it
+// full step's contacts, 1.0 when there are none, for every tester, scheduler, thread count and narrow mode —
+// narrowed towards the exact time for the testers that tighten it (conservative within 1e-9, never later); it
 // tests fewer pairs than the full step where contacts begin late; on the shared real steps too (skipped where
 // ../shared/data is absent).
 #include <gtest/gtest.h>
@@ -43,30 +44,54 @@ struct Sequence {
   }
 };
 
+/// Testers that narrow a hit's time for the earliest-time query (PrimitiveTester::tighten_toi).
+bool tightens(std::string_view tester, double eta) { return (tester == "conservative" && eta == 0) || tester == "inclusion"; }
+
 TEST(EarliestToi, EqualsTheFullStepsEarliestContactEverywhere) {
   const Sequence seq;
   const TriMesh mesh(Index(seq.grid.positions.size()), seq.grid.faces);
+  // The exact earliest time of each step: what the narrowed times must approach from below.
+  std::vector<double> exact;
+  {
+    CcdPipeline e(mesh, single_cloth_body(mesh), strategies("exact", "phc", 2, NarrowMode::batched));
+    for (std::size_t s = 0; s + 1 < seq.frames.size(); ++s) exact.push_back(min_toi(e.step(seq.frames[s], seq.frames[s + 1])));
+  }
   // At zero thickness for every scheduler; with a separation η (1/25 of an edge) for the testers that take one,
-  // with phc ×2.
+  // and the field's two methods, with phc ×2.
   for (const auto& [tester, eta] : {std::pair{"float", 0.0}, {"filtered", 0.0}, {"conservative", 0.0}, {"exact", 0.0},
-                                    {"float", 0.002}, {"conservative", 0.002}})
-    for (const NarrowMode mode : {NarrowMode::batched, NarrowMode::scalar})
+                                    {"float", 0.002}, {"conservative", 0.002}, {"additive", 0.0}, {"inclusion", 0.0}})
+    for (const NarrowMode mode : {NarrowMode::batched, NarrowMode::scalar}) {
+      std::vector<double> first;  // the first scheduler's answers: every other must equal them
       for (const auto& [scheduler, threads] : {std::pair{"sequential", 1}, {"phc", 2}, {"front", 2}, {"static", 2}}) {
-        if (eta > 0 && std::string_view(scheduler) != "phc") continue;
+        const bool few = eta > 0 || std::string_view(tester) == "additive" || std::string_view(tester) == "inclusion";
+        if (few && std::string_view(scheduler) != "phc") continue;
         CcdPipeline full(mesh, single_cloth_body(mesh), strategies(tester, scheduler, threads, mode, eta));
         CcdPipeline earliest(mesh, single_cloth_body(mesh), strategies(tester, scheduler, threads, mode, eta));
         int with_contacts = 0;
         for (std::size_t s = 0; s + 1 < seq.frames.size(); ++s) {
           const StepResult r = full.step(seq.frames[s], seq.frames[s + 1]);
-          const double want = min_toi(r);
-          EXPECT_EQ(earliest.earliest_toi(seq.frames[s], seq.frames[s + 1]), want)
-              << tester << " eta " << eta << " " << to_string(mode) << " " << scheduler << " step " << s;
+          const double want = min_toi(r), got = earliest.earliest_toi(seq.frames[s], seq.frames[s + 1]);
+          const std::string what = std::string(tester) + " eta " + std::to_string(eta) + " " + std::string(to_string(mode)) +
+                                   " " + scheduler + " step " + std::to_string(s);
+          if (tightens(tester, eta)) {
+            // Narrowed: no earlier than the full step's lower bound, never later than the exact time.
+            EXPECT_GE(got, want) << what;
+            EXPECT_LE(got, exact[s]) << what;
+            if (std::string_view(tester) == "conservative") {
+              EXPECT_LE(exact[s] - got, 1e-9) << what;
+            }
+          } else {
+            EXPECT_EQ(got, want) << what;
+          }
+          if (first.size() <= s) first.push_back(got);
+          EXPECT_EQ(got, first[s]) << what << ": differs from the first scheduler's";
           with_contacts += !r.contacts.empty();
         }
         EXPECT_GE(with_contacts, 2) << "the sequence must have contacts for the comparison to mean something";
         // After an earliest-time query, a step is a whole one again.
         EXPECT_EQ(earliest.step(seq.frames[0], seq.frames[1]).contacts.size(), full.step(seq.frames[0], seq.frames[1]).contacts.size());
       }
+    }
 }
 
 TEST(EarliestToi, SkipsPairsThatCannotBeatTheBestTime) {
@@ -94,7 +119,8 @@ TEST(EarliestToi, SkipsPairsThatCannotBeatTheBestTime) {
 TEST(EarliestToi, SharedRealStepsAgreeWithTheirContacts) {
   const std::string root = test::shared_data();
   if (root.empty()) GTEST_SKIP() << "../shared/data not found: real steps skipped";
-  for (const auto& [a, b] : {std::pair{"rod-twist/3036.ply", "rod-twist/3037.ply"}, {"cloth-funnel/227.ply", "cloth-funnel/228.ply"}}) {
+  for (const auto& [a, b] : {std::pair{"rod-twist/3036.ply", "rod-twist/3037.ply"}, {"cloth-funnel/227.ply", "cloth-funnel/228.ply"},
+                             {"n-body-simulation/balls16_18.ply", "n-body-simulation/balls16_19.ply"}}) {
     const MeshData m0 = read_mesh(root + "/meshes/" + a), m1 = read_mesh(root + "/meshes/" + b);
     const TriMesh mesh(Index(m0.positions.size()), m0.faces);
     for (const char* tester : {"float", "exact"}) {
@@ -102,6 +128,12 @@ TEST(EarliestToi, SharedRealStepsAgreeWithTheirContacts) {
       CcdPipeline cut(mesh, single_cloth_body(mesh), strategies(tester, "phc", 2, NarrowMode::batched));
       EXPECT_EQ(cut.earliest_toi(m0.positions, m1.positions), min_toi(full.step(m0.positions, m1.positions))) << a << " " << tester;
     }
+    // `conservative` narrowed: within 1e-9 of exact's earliest time, never later.
+    CcdPipeline exact(mesh, single_cloth_body(mesh), strategies("exact", "phc", 2, NarrowMode::batched));
+    CcdPipeline conservative(mesh, single_cloth_body(mesh), strategies("conservative", "phc", 2, NarrowMode::batched));
+    const double truth = exact.earliest_toi(m0.positions, m1.positions), got = conservative.earliest_toi(m0.positions, m1.positions);
+    EXPECT_LE(got, truth) << a;
+    EXPECT_LE(truth - got, 1e-9) << a;
   }
 }
 
