@@ -110,6 +110,18 @@ if "30 frames, every one separated by at least" not in text or not z or min(z) <
     sys.exit("FAIL: barrier_cloth: " + text[-400:])
 print(f"  barrier_cloth: 30 frames separated, lowest point {min(z):.4f}")
 PY
+# The same with the `additive` tester's step size in the line search (not conservative: whether every frame stays
+# separated is reported, not required); the run must finish and print its comparison line.
+"$work/barrier/build/barrier_cloth" 30 additive > "$work/barrier_additive.txt" 2>&1 || true
+/usr/bin/python3 - "$work/barrier.txt" "$work/barrier_additive.txt" <<'PY'
+import re, sys
+for f in sys.argv[1:]:
+    text = open(f).read()
+    m = re.search(r"line search: .*", text) or re.search(r"frame \d+ ends with pairs closer than the separation", text)
+    if not m:
+        sys.exit("FAIL: barrier_cloth: neither a line-search summary nor a separation failure: " + text[-400:])
+    print("  barrier_cloth " + m.group(0))
+PY
 
 PYTHONPATH="$prefix/lib/python3/dist-packages" /usr/bin/python3 -c '
 import ccdlab, numpy as np

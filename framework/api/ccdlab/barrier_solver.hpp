@@ -152,6 +152,11 @@ struct Solver {
   double h = 1.0 / 60, mass = 0, k = 2e3, kappa = 1e2, dhat = 5e-3, separation = 5e-4;
   Vec3 gravity{0, 0, -9.81};
   int max_iterations = 50;
+  /// When set, the line search's collision-free step size is this detector's earliest time of contact from x to
+  /// x + Δx instead of active_set_and_step's — e.g. a Detector with the `additive` tester at thickness =
+  /// separation, as most IPC codes run (examples/barrier_cloth `additive`); the active set still comes from
+  /// `detector`. Not conservative in floating point: the end-of-frame separation check is what tells.
+  Detector* step_detector = nullptr;
   /// Called with each Newton iteration's x and x + Δx, before the line search: what the solver asks CCD.
   std::function<void(const std::vector<Point>& x, const std::vector<Point>& target)> on_newton_step;
   std::vector<Point> xt;  // x̃
@@ -219,7 +224,15 @@ struct Solver {
   struct FrameReport {
     int iterations = 0;
     std::size_t active = 0;
+    double step_size_sum = 0;  ///< the collision-free step sizes of the frame's line searches, summed
   };
+
+  /// The pairs near x and how far towards `target` no pair comes closer than the separation.
+  auto line_search(const std::vector<Point>& x, const std::vector<Point>& target) {
+    if (!step_detector) return detector.active_set_and_step(x, target, dhat, separation);
+    return decltype(detector.active_set_and_step(x, target, dhat, separation)){detector.proximity(x, dhat),
+                                                                               step_detector->earliest_toi(x, target)};
+  }
 
   /// One implicit step of the cloth; v updated from the motion.
   FrameReport step(std::vector<Point>& x, std::vector<Vec3>& v) {
@@ -246,7 +259,8 @@ struct Solver {
       for (int i = 0; i < scene.cloth_vertices; ++i)
         for (int c = 0; c < 3; ++c) target[i][c] += dx[3 * i + c];
       if (on_newton_step) on_newton_step(x, target);
-      const auto line = detector.active_set_and_step(x, target, dhat, separation);
+      const auto line = line_search(x, target);
+      report.step_size_sum += line.step_size;
       double alpha = line.step_size >= 1 ? 1.0 : 0.9 * line.step_size;  // short of the separation, where it binds
       const double e0 = energy(x, line.active), slope = g.dot(dx);
       std::vector<Point> trial = x;
