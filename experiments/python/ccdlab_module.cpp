@@ -537,7 +537,7 @@ PYBIND11_MODULE(_ccdlab, m) {
       py::arg("x0"), py::arg("x1"), py::arg("faces"),
       "The earliest time of contact in [0, 1] of one step (1.0 when none), without solving the pairs that cannot "
       "beat the best time found so far; options as step(). Never later than the truth with tester='conservative' "
-      "or 'exact'.");
+      "(within 1e-9 of it) or 'exact'.");
   m.def(
       "proximity",
       [](const Points& x, const Triangles& faces, double dhat, const py::kwargs& options) {

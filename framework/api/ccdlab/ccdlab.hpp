@@ -103,8 +103,9 @@ class Detector {
 
   /// The earliest time of contact in [0, 1] while each vertex moves linearly from x0 to x1, 1.0 when there is
   /// none: the minimum of step()'s times, found without solving the pairs that cannot beat the best time found
-  /// so far. With `conservative` or `exact` it is never later than the true earliest contact. For a
-  /// collision-free step size: move by a fraction of it.
+  /// so far. With `conservative` or `exact` it is never later than the true earliest contact, `conservative`
+  /// within 1e-9 of it (the hits that can be the earliest are narrowed). For a collision-free step size: move by
+  /// a fraction of it.
   [[nodiscard]] double earliest_toi(std::span<const Point> x0, std::span<const Point> x1);
 
   /// A vertex–face or edge–edge pair closer than d̂: its vertex ids (as a Contact's), its distance, the type of its
