@@ -1,8 +1,11 @@
-// `ccdlab export CONFIG.yaml [--set …] [--step N] [--levels L] --out DIR`: VTK files of an experiment for
+// `ccdlab export CONFIG.yaml [--set …] [--step N] [--levels L] [--out DIR] [--html FILE]`: VTK files of an experiment for
 // ParaView and meshio (framework/export/): the mesh of every frame with per-triangle contact counts (mesh.pvd),
 // and for one step — by default the one with the most contacts — the BVH levels as k-DOP polyhedra (bvh.pvd,
 // one time value per depth), the BVTT front of every pass coloured by kept / sprouted / pruned, and the
 // contacts at their time of contact. export.json lists the files with the resolved config and the revision.
+//
+// `--html OUT.html` writes the teaching page instead of (or besides) the VTK files: one self-contained file a
+// browser opens from disk (framework/export/teaching_page.hpp, experiments/cli/export/teaching_data.hpp).
 //
 // The front is the `front` scheduler's (the config's scheduler is replaced by it for the export): every
 // scheduler finds the same contacts, only `front` keeps a front to draw.
@@ -10,26 +13,16 @@
 
 #include "ccdlab/build_info.hpp"
 #include "experiments/cli/commands.hpp"
+#include "experiments/cli/export/pass_fronts.hpp"
+#include "experiments/cli/export/teaching_data.hpp"
 #include "framework/export/ccd_pictures.hpp"
+#include "framework/export/teaching_page.hpp"
 #include "framework/util/error.hpp"
 #include "framework/util/files.hpp"
 #include "framework/util/progress.hpp"
 #include "strategies/registry.hpp"
-#include "strategies/schedulers/front_scheduler.hpp"
 
 namespace ccdlab::cli {
-namespace {
-
-using Fronts = std::vector<std::vector<FrontNode>>;  ///< per traversal pass
-
-Fronts fronts_of(const CcdPipeline& pipeline) {
-  const auto* front = dynamic_cast<const FrontScheduler*>(pipeline.strategies().scheduler.get());
-  Fronts out;
-  for (const TraversalPass& pass : pipeline.passes()) out.push_back(front->front(pass.id));
-  return out;
-}
-
-}  // namespace
 
 int export_command(const ExportOptions& o) {
   const Registries reg = builtin_registries();
@@ -41,6 +34,16 @@ int export_command(const ExportOptions& o) {
   const int steps = scene.num_steps();
   if (o.step < -1 || o.step >= steps)
     fail("--step: expected a step from 0 to {} ({} has {} frames), got {}", steps - 1, config.source, steps + 1, o.step);
+  if (o.out.empty() && o.html.empty()) fail("ccdlab export: give --out DIR (VTK files), --html FILE (the teaching page) or both");
+  if (!o.html.empty()) {
+    if (const auto parent = std::filesystem::path(o.html).parent_path(); !parent.empty())
+      create_output_dir(parent.string(), "--html");
+    Progress progress("ccdlab export --html", long(KdopKs::values.size()) * steps, o.progress);
+    write_teaching_page(o.html, teaching_data(config, reg, scene, {o.levels, o.step}, progress), "--html");
+    fmt::print("ccdlab export {} — {}, rev {}\nwrote {} ({:.1f} MB): open it in a browser, no server needed\n", config.name,
+               scene.description(), build_info::git_revision, o.html, double(std::filesystem::file_size(o.html)) / 1e6);
+    if (o.out.empty()) return 0;
+  }
   const TriMesh& mesh = scene.topology();
 
   // Pass 1: every step, for the per-frame contact counts (and to find the busiest step).

@@ -56,7 +56,8 @@ struct ExportOptions {
   std::vector<std::string> overrides;  ///< --set key=value
   int step = -1;                       ///< the step drawn in detail; −1 = the one with the most contacts
   int levels = 8;                      ///< BVH depths drawn: 0 … levels − 1
-  std::string out;                     ///< folder for the VTK files
+  std::string out;                     ///< folder for the VTK files (or none, with html)
+  std::string html;                    ///< the teaching page (one self-contained .html), or none
   bool progress = true;
 };
 int export_command(const ExportOptions& o);

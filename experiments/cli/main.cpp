@@ -167,7 +167,9 @@ Command add_export(CLI::App& app) {
   cmd->add_option("--set", o.overrides, "override a config key (repeatable)");
   cmd->add_option("--step", o.step, "the step drawn in detail (default: the one with the most contacts)");
   cmd->add_option("--levels", o.levels, "BVH depths to draw, from the root")->capture_default_str();
-  cmd->add_option("--out", o.out, "folder for the .vtu / .pvd files")->required();
+  cmd->add_option("--out", o.out, "folder for the .vtu / .pvd files");
+  cmd->add_option("--html", o.html, "one self-contained page to open in a browser: the steps, BVH levels, front, "
+                                    "contacts at every K, and a walk-through of the BVTT per scheduler");
   add_progress_flag(cmd, o);
   return {cmd, [&o] { return export_command(o); }};
 }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs every build, test and analysis dependency of ccdlab from Debian packages (clang-14 with libomp and
-# libFuzzer: the sanitizer builds and the fuzz targets).
+# libFuzzer: the sanitizer builds and the fuzz targets; three.js for the teaching page, read at export time, and
+# chromium for its headless test).
 # Idempotent: skips apt-get when all packages are already present. Needs root (or sudo).
 set -euo pipefail
 packages=(
@@ -10,6 +11,7 @@ packages=(
   python3 python3-venv python3-pip python3-setuptools python3-wheel python3-meshio python3-matplotlib python3-numpy python3-pandas python3-scipy python3-pytest
   libhwy-dev libembree-dev pybind11-dev python3-dev
   clang-14 libomp-14-dev libclang-rt-14-dev libfuzzer-14-dev llvm-14
+  libjs-three chromium fonts-dejavu-core
 )
 missing=()
 for p in "${packages[@]}"; do
