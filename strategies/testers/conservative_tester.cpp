@@ -17,8 +17,6 @@ using interval_ccd::Verdict;
 constexpr double kMinWidth = 0x1p-50;
 /// Width to which roots of f are isolated (f only) before the inside / crossing conditions are examined.
 constexpr double kIsolationWidth = 0x1p-6;
-/// The earliest-time query's resolution, relative to the step (tighten_toi): its answer is within 1e-9.
-constexpr double kTightWidth = 0x1p-32;  // 2.3e-10: within 1e-9 with room for the last window
 /// More isolated windows than this means f is near zero over much of the step (coplanar motion).
 constexpr int kMaxIsolatedWindows = 6;
 
@@ -177,7 +175,7 @@ CcdHit ConservativeTester::search(const Query& q) const {
 template <class Query>
 double ConservativeTester::tighten(const Query& q, double toi) const {
   if (params_.thickness > 0 || !(toi < 1)) return toi;
-  const double t = interval_ccd::earliest_coplanarity(interval_ccd::relative_motion(q), toi, 1.0, kTightWidth);
+  const double t = interval_ccd::earliest_coplanarity(interval_ccd::relative_motion(q), toi, 1.0, kTightToiWidth);
   return t < 1 ? std::max(t, toi) : toi;  // f ≠ 0 proven over the rest: a fallback hit; its time stays
 }
 

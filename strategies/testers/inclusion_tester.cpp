@@ -69,15 +69,12 @@ CcdHit search(const Query& q, const InclusionTester::Params& p) {
   return h;
 }
 
-/// The earliest-time query's resolution, relative to the step.
-constexpr double kTightWidth = 0x1p-32;  // 2.3e-10: within 1e-9 with room for the last window
-
 template <class Query>
 double tighten(const Query& q, const InclusionTester::Params& p, double toi) {
-  // No contact before toi (a lower bound): the search restarted there, with boxes at most kTightWidth long in
+  // No contact before toi (a lower bound): the search restarted there, with boxes at most kTightToiWidth long in
   // time, still never passes over one.
   bool fallback = false;
-  const double t = earliest_box(q, p, toi, kTightWidth, &fallback);
+  const double t = earliest_box(q, p, toi, kTightToiWidth, &fallback);
   return t <= 1 ? std::max(t, toi) : toi;
 }
 
