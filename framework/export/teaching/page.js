@@ -168,7 +168,7 @@
   }
 
   const polyCache = new Map();
-  function nodePolys(k, stepSlabs, key, slab) {
+  function nodePolys(k, key, slab) {
     if (!polyCache.has(key)) polyCache.set(key, polyhedron(D.axes[k], slab));
     return polyCache.get(key);
   }
@@ -188,7 +188,7 @@
         const polys = [];
         topo.depth.forEach((d, n) => {
           if (d !== state.depth || !kd.slabs[b][n]) return;
-          polys.push(...nodePolys(state.k, kd.slabs[b], `${state.k}/${s}/${b}/${n}`, kd.slabs[b][n]));
+          polys.push(...nodePolys(state.k, `${state.k}/${s}/${b}/${n}`, kd.slabs[b][n]));
         });
         if (polys.length) group.add(polyMesh(polys, b === 0 ? 0x3a7bd5 : 0x8e44ad, 0.12));
       });
